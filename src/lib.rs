@@ -1,0 +1,15 @@
+//! revdist: minimum distance between solids of revolution.
+//!
+//! Implements S.-H. Son, S.-H. Yoon, M.-S. Kim, G. Elber, *Efficient Minimum Distance
+//! Computation for Solids of Revolution*, Computer Graphics Forum 39(2), 2020: a planar
+//! profile curve in the (rho, z) half-plane is split into spirals, each approximated by a
+//! tree of G1 biarcs with a guaranteed error bound; revolving the arcs gives a bounding
+//! volume hierarchy of fat toroidal patches, and the distance between two patches reduces
+//! to the binormals of two circles in space.
+//!
+//! Data flows one way: [`nurbs`] curves form a [`profile`]; built-in profiles live in
+//! [`models`].
+
+pub mod nurbs;
+pub mod profile;
+pub mod profile_file;

@@ -1,0 +1,1 @@
+//! TOML profile files. Skeleton.
