@@ -13,3 +13,4 @@
 pub mod nurbs;
 pub mod profile;
 pub mod profile_file;
+pub mod query;
