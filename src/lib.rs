@@ -11,5 +11,6 @@
 //! [`models`].
 
 pub mod nurbs;
+pub mod poly;
 pub mod profile;
 pub mod profile_file;
