@@ -140,8 +140,9 @@ impl BezierSpan {
         let n = q.len();
         for r in 1..n {
             for i in 0..n - r {
-                for c in 0..3 {
-                    q[i][c] = (1.0 - s) * q[i][c] + s * q[i + 1][c];
+                let next = q[i + 1];
+                for (qc, nc) in q[i].iter_mut().zip(next) {
+                    *qc = (1.0 - s) * *qc + s * nc;
                 }
             }
         }
@@ -677,8 +678,8 @@ fn basis_derivatives(p: usize, knots: &[f64], span: usize, t: f64, order: usize)
         }
     }
     let mut factor = p as f64;
-    for k in 1..=order {
-        for v in ders[k].iter_mut() {
+    for (k, row) in ders.iter_mut().enumerate().skip(1) {
+        for v in row.iter_mut() {
             *v *= factor;
         }
         factor *= (p - k) as f64;
