@@ -23,37 +23,27 @@ const MIN_WIDTH: f64 = 1e-15;
 /// Evaluates the Bernstein polynomial with coefficients `c` at `t` in O(n) (Horner on
 /// t/(1-t), mirrored for t > 1/2 so the ratio stays <= 1).
 pub fn eval(c: &[f64], t: f64) -> f64 {
-    let n = c.len() - 1;
-    if n == 0 {
-        return c[0];
-    }
-    let (s, r, rev) = if t <= 0.5 {
-        (1.0 - t, t / (1.0 - t), false)
-    } else {
-        (t, (1.0 - t) / t, true)
-    };
-    let coef = |i: usize| if rev { c[n - i] } else { c[i] };
-    let mut binom = 1.0;
-    let mut acc = coef(n);
-    for i in (0..n).rev() {
-        binom = binom * (i + 1) as f64 / (n - i) as f64;
-        acc = acc * r + binom * coef(i);
-    }
-    acc * s.powi(n as i32)
+    horner_bernstein(c, t, |x| x)
 }
 
 /// `sum |b_i| B_i(t)`: the scale against which rounding in [`eval`] is measured.
 pub fn eval_abs(c: &[f64], t: f64) -> f64 {
+    horner_bernstein(c, t, f64::abs)
+}
+
+/// `sum map(b_i) B_i(t)` by Horner's rule in the ratio t/(1-t) (or its mirror).
+#[inline]
+fn horner_bernstein(c: &[f64], t: f64, map: impl Fn(f64) -> f64) -> f64 {
     let n = c.len() - 1;
     if n == 0 {
-        return c[0].abs();
+        return map(c[0]);
     }
     let (s, r, rev) = if t <= 0.5 {
         (1.0 - t, t / (1.0 - t), false)
     } else {
         (t, (1.0 - t) / t, true)
     };
-    let coef = |i: usize| if rev { c[n - i].abs() } else { c[i].abs() };
+    let coef = |i: usize| map(if rev { c[n - i] } else { c[i] });
     let mut binom = 1.0;
     let mut acc = coef(n);
     for i in (0..n).rev() {
