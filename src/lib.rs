@@ -11,6 +11,7 @@
 //! [`models`].
 
 pub mod nurbs;
+pub mod poly;
 pub mod profile;
 pub mod profile_file;
 pub mod query;
