@@ -15,3 +15,4 @@ pub mod poly;
 pub mod profile;
 pub mod profile_file;
 pub mod query;
+pub mod solid;

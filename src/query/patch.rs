@@ -9,7 +9,7 @@
 //! radius `c_rho` (signed) at height `c_z`; every surface normal line meets it at a right angle.
 
 use nalgebra::{Point2, Point3, Vector2, Vector3};
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 /// Angular slack (radians) for deciding that an arc angle lies in an arc's range. Contacts
 /// exactly on a shared patch boundary must be kept by both neighbours (inclusive test); the
@@ -337,7 +337,7 @@ impl Patch {
             // Work with the mirrored point instead of the mirrored piece.
             let xs = Point2::new(mirror * xm.x, xm.y);
             match self.arc {
-                ProfileArc::Arc { center, radius, .. } => {
+                ProfileArc::Arc { center, .. } => {
                     let d = xs - center;
                     let n = d.norm();
                     if n <= 1e-300 {
@@ -438,12 +438,3 @@ impl Patch {
     }
 }
 
-/// Angle difference wrapped to (-pi, pi].
-pub(crate) fn wrap_pi(a: f64) -> f64 {
-    let r = (a + PI).rem_euclid(TAU) - PI;
-    if r <= -PI {
-        r + TAU
-    } else {
-        r
-    }
-}
