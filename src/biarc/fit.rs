@@ -92,6 +92,21 @@ impl FittedBiarc {
     }
 }
 
+/// Required G1 continuity at the joint (issue 4): 1e-12 rad.
+pub const G1_TOL: f64 = 1e-12;
+
+/// The joint is a curve point known to a few ulps of the coordinates, so an arc of length `l`
+/// has its end tangent known only to ~`ulp / l`; [`g1_tolerance`] allows this many ulps.
+pub const G1_ULP_FACTOR: f64 = 64.0;
+
+/// The G1 defect a fit can promise: [`G1_TOL`], or, for arcs so short that coordinate rounding
+/// alone exceeds it, `G1_ULP_FACTOR * eps_mach * scale / shortest arc` (`scale` = largest
+/// coordinate magnitude of the curve).
+pub fn g1_tolerance(fit: &FittedBiarc, scale: f64) -> f64 {
+    let shortest = fit.arcs[0].length.min(fit.arcs[1].length);
+    G1_TOL.max(G1_ULP_FACTOR * f64::EPSILON * scale / shortest)
+}
+
 /// The signed J-circle function `g(X)` for end data `(a, ta)`, `(b, tb)` (unit tangents), as
 /// `(sin w, cos w)` and a closure-free evaluator.
 #[derive(Debug, Clone, Copy)]
@@ -309,8 +324,6 @@ mod tests {
     /// Largest accepted `bound / sampled truth` on smooth spirals: the bilens is asymptotically
     /// ~1.7-1.9x the truth (notes `biarcs.md` section 2.2); 3 leaves room for coarse pieces.
     const MAX_BOUND_RATIO: f64 = 3.0;
-    /// Required G1 continuity of the joint (issue 4).
-    const G1_TOL: f64 = 1e-12;
 
     /// A clothoid spiral with one curvature sign and turning below 90 degrees.
     fn clothoid(theta0: f64, k0: f64, f: f64, length: f64) -> Clothoid {

@@ -8,6 +8,8 @@ pub mod arc;
 pub mod bound;
 pub mod fit;
 pub mod oracle;
+pub mod span;
+pub mod spiral;
 #[cfg(test)]
 mod test_curves;
 

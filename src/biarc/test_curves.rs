@@ -54,9 +54,6 @@ impl Clothoid {
         }
         acc * r
     }
-    pub fn curvature(&self, s: f64) -> f64 {
-        self.k0 + self.k1 * s
-    }
 }
 
 impl PlanarCurve for Clothoid {
