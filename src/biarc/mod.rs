@@ -10,11 +10,13 @@ pub mod fit;
 pub mod oracle;
 pub mod span;
 pub mod spiral;
+pub mod tree;
 #[cfg(test)]
 mod test_curves;
 
 pub use arc::Arc;
 pub use fit::{fit_biarc, CurveSample, FittedBiarc, PlanarCurve};
+pub use tree::{BiarcNode, BiarcTree, Disk, NodeId, SpiralInfo, TreeError, TreeStats, UpperNode};
 
 /// Errors of biarc fitting, spiral segmentation and tree building.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
