@@ -12,5 +12,6 @@
 
 pub mod biarc;
 pub mod nurbs;
+pub mod poly;
 pub mod profile;
 pub mod profile_file;
