@@ -158,7 +158,7 @@ pub fn fit_biarc<C: PlanarCurve + ?Sized>(
             t: if na > 0.0 { s1.t } else { s0.t },
         });
     }
-    if !(s1.t > s0.t) {
+    if s1.t.partial_cmp(&s0.t) != Some(std::cmp::Ordering::Greater) {
         return Err(BiarcError::EmptyInterval { t0: s0.t, t1: s1.t });
     }
     let (ta, tb) = (da / na, db / nb);

@@ -10,9 +10,11 @@ pub mod fit;
 pub mod oracle;
 pub mod span;
 pub mod spiral;
-pub mod tree;
 #[cfg(test)]
 mod test_curves;
+pub mod tree;
+#[cfg(test)]
+mod tree_tests;
 
 pub use arc::Arc;
 pub use fit::{fit_biarc, CurveSample, FittedBiarc, PlanarCurve};

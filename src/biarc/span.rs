@@ -34,8 +34,9 @@ impl PlanarCurve for SpanCurve<'_> {
         let v = 1.0 - u;
         for r in 1..n {
             for i in 0..=n - r {
-                for c in 0..3 {
-                    q[i][c] = v * q[i][c] + u * q[i + 1][c];
+                let next = q[i + 1];
+                for (qc, nc) in q[i].iter_mut().zip(next) {
+                    *qc = v * *qc + u * nc;
                 }
             }
         }

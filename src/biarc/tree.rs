@@ -46,7 +46,9 @@ pub enum TreeError {
     #[error("eps must be positive and finite, got {0}")]
     InvalidEps(f64),
     /// `eps` is below what floating point can certify for this profile.
-    #[error("eps = {eps:e} is below {min:e} (1e-12 of the profile size), which rounding cannot certify")]
+    #[error(
+        "eps = {eps:e} is below {min:e} (1e-12 of the profile size), which rounding cannot certify"
+    )]
     EpsTooSmall {
         /// Requested bound.
         eps: f64,
@@ -348,8 +350,7 @@ impl BiarcTree {
         let to_t = |u: f64| span.t0 + (span.t1 - span.t0) * u;
         while let Some(job) = self.stack.pop() {
             let curve = SpanCurve {
-                homogeneous: &self.coeffs
-                    [span.offset as usize..(span.offset + span.len) as usize],
+                homogeneous: &self.coeffs[span.offset as usize..(span.offset + span.len) as usize],
             };
             let fit = fit_biarc(&curve, &job.a, &job.b)
                 .map_err(|source| TreeError::Fit { piece, source })?;
@@ -620,12 +621,7 @@ fn arc_aabb(arc: &Arc) -> Aabb2 {
         max: arc.start,
     }
     .including(arc.end);
-    for dir in [
-        Vector2::x(),
-        -Vector2::x(),
-        Vector2::y(),
-        -Vector2::y(),
-    ] {
+    for dir in [Vector2::x(), -Vector2::x(), Vector2::y(), -Vector2::y()] {
         if let Some(s) = reach(arc, dir) {
             bb = bb.including(arc.point_at(s));
         }
