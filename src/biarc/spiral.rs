@@ -271,17 +271,6 @@ mod tests {
         let s = std::f64::consts::FRAC_1_SQRT_2;
         // quarter circle (rational quadratic): one spiral, no kappa' split
         assert!(spiral_splits(&[[1.0, 0.0, 1.0], [s, s, s], [0.0, 1.0, 1.0]]).is_empty());
-        // half circle centred at (0, 1) from (0,0) to (0,2): splits only at the rho-extremum
-        let half = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [1.0, 1.0, 1.0]];
-        let _ = half;
-        let hc = [
-            [0.0, 0.0, 1.0],
-            [0.5, 0.0, 0.5],
-            [1.0, 1.0, 1.0],
-            [0.5, 1.0, 0.5],
-            [0.0, 1.0, 1.0],
-        ];
-        let _ = hc;
         // straight cubic (collinear control points, uneven speed): no split
         let line = [
             [0.0, 0.0, 1.0],
@@ -295,13 +284,6 @@ mod tests {
         assert!(spiral_splits(&vert).is_empty());
         check_span(&line);
         // S-curve: exactly one inflection
-        let s_curve = [
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 1.0],
-            [1.0, 1.0, 1.0],
-            [2.0, 0.0, 1.0],
-        ];
-        let _ = s_curve;
         let s_curve = [
             [0.0, 0.0, 1.0],
             [1.0, 1.0, 1.0],
