@@ -10,6 +10,7 @@
 //! Data flows one way: [`nurbs`] curves form a [`profile`]; built-in profiles live in
 //! [`models`].
 
+pub mod biarc;
 pub mod nurbs;
 pub mod poly;
 pub mod profile;
