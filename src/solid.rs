@@ -5,6 +5,7 @@
 //! local z axis) is at `R x + t` in the world frame, `R` a unit quaternion. For a pair of
 //! solids the relative pose `pos_ab = pose_a^-1 * pose_b` places B in A's frame.
 
+use crate::biarc::{BiarcTree, TreeError};
 use crate::profile::Profile;
 use crate::query::tree::QueryTree;
 use nalgebra::{Isometry3, Point3};
@@ -29,6 +30,13 @@ impl Solid {
             profile,
             pose: Isometry3::identity(),
         }
+    }
+
+    /// A solid from an exact profile: builds the biarc tree with bound `eps` (paper 4.1).
+    pub fn from_profile(profile: Arc<Profile>, eps: f64) -> Result<Solid, TreeError> {
+        let bt = BiarcTree::build(&profile, eps)?;
+        let tree = QueryTree::from_biarc_tree(&bt, profile.kind());
+        Ok(Solid::new(Arc::new(tree), Some(profile)))
     }
 
     /// The same shape at another pose (the tree is shared, not copied).

@@ -13,7 +13,8 @@ use super::containment::point_in_solid;
 use super::refine::refine_on_profiles;
 use super::traverse::{traverse, Budget, TraversalOptions, TraversalStats};
 use crate::solid::Solid;
-use nalgebra::Point3;
+use super::tree::QueryTree;
+use nalgebra::{Isometry3, Point3};
 
 /// What the caller asks of a query.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,6 +93,11 @@ pub fn distance_cached(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Qu
                 return overlap_result(world(&p), world(&q), s.stats);
             }
         }
+        if let Some((la, lb)) = s.best_pair {
+            if let Some(x) = deep_point(&a.tree, &b.tree, la, lb, &pos_ab, eps_sum) {
+                return overlap_result(world(&x), world(&x), s.stats);
+            }
+        }
         let upper = s.upper;
         return Distance {
             value: 0.0,
@@ -161,4 +167,51 @@ fn overlap_result(pa: Point3<f64>, pb: Point3<f64>, stats: TraversalStats) -> Di
         overlap: true,
         stats,
     }
+}
+
+/// Revolution angles sampled by [`deep_point`].
+const DEEP_THETAS: usize = 16;
+/// Arc parameters sampled by [`deep_point`].
+const DEEP_PARAMS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+
+/// A point of one leaf's patches (A's frame) inside the other solid with a classification
+/// margin above `eps_sum`: a certificate that the solids overlap. Used when the
+/// approximating surfaces meet at leaves `la`, `lb`.
+fn deep_point(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    la: u32,
+    lb: u32,
+    pos_ab: &Isometry3<f64>,
+    eps_sum: f64,
+) -> Option<Point3<f64>> {
+    let pos_ba = pos_ab.inverse();
+    let samples = |t: &QueryTree, leaf: u32| {
+        let n = &t.nodes[leaf as usize];
+        let mut pts = Vec::new();
+        for patch in &t.patches[n.patch_start as usize..n.patch_end as usize] {
+            for s in DEEP_PARAMS {
+                let m = patch.arc.point_at(s);
+                for k in 0..DEEP_THETAS {
+                    let th = k as f64 * std::f64::consts::TAU / DEEP_THETAS as f64;
+                    pts.push(Point3::new(m.x * th.cos(), m.x * th.sin(), m.y));
+                }
+            }
+        }
+        pts
+    };
+    for x in samples(tb, lb) {
+        let xa = pos_ab * x;
+        let c = point_in_solid(ta, &xa);
+        if c.inside && c.margin > eps_sum {
+            return Some(xa);
+        }
+    }
+    for x in samples(ta, la) {
+        let c = point_in_solid(tb, &(pos_ba * x));
+        if c.inside && c.margin > eps_sum {
+            return Some(x);
+        }
+    }
+    None
 }

@@ -5,6 +5,7 @@
 //! torus containing the corresponding part of the solid's boundary (see [`super::bounds`]).
 
 use super::patch::{Patch, ProfileArc};
+use crate::biarc::{Arc as BiarcArc, BiarcTree};
 use crate::profile::ProfileKind;
 use nalgebra::{Point2, Vector2};
 
@@ -172,6 +173,79 @@ impl QueryTree {
         self.nodes.len() as u32 - 1
     }
 
+    /// The query view of a biarc tree: its spiral subtrees copied node by node (their disks
+    /// contain both the curve piece and the biarc), under a balanced upper level over the
+    /// spirals in profile order whose disks are unions of the children's disks.
+    pub fn from_biarc_tree(bt: &BiarcTree, kind: ProfileKind) -> QueryTree {
+        let mut t = QueryTree {
+            nodes: Vec::with_capacity(bt.nodes().len() + bt.spirals().len()),
+            patches: Vec::new(),
+            root: NO_CHILD,
+            chain: bt
+                .leaves()
+                .flat_map(|l| l.arcs().iter().filter(|a| a.length > 0.0).map(piece_of_arc))
+                .collect(),
+            kind,
+            eps: 0.0,
+        };
+        let roots: Vec<u32> = bt.spirals().iter().map(|s| t.copy_subtree(bt, s.root)).collect();
+        t.eps = t.nodes.iter().filter(|n| n.is_leaf()).map(|n| n.eps).fold(0.0, f64::max);
+        if !roots.is_empty() {
+            t.root = t.build_upper(&roots);
+        }
+        t
+    }
+
+    fn copy_subtree(&mut self, bt: &BiarcTree, id: u32) -> u32 {
+        let n = bt.node(id);
+        let disk = n.bounding_disk();
+        let bound = Disk {
+            center: disk.center,
+            radius: disk.radius,
+        };
+        let mut node = Node {
+            bound,
+            eps: n.eps(),
+            children: [NO_CHILD, NO_CHILD],
+            patch_start: 0,
+            patch_end: 0,
+        };
+        if let Some([c0, c1]) = n.children() {
+            let a = self.copy_subtree(bt, c0);
+            let b = self.copy_subtree(bt, c1);
+            node.children = [a, b];
+        } else {
+            node.patch_start = self.patches.len() as u32;
+            self.patches.extend(
+                n.arcs()
+                    .iter()
+                    .filter(|a| a.length > 0.0)
+                    .map(|a| Patch::new(piece_of_arc(a))),
+            );
+            node.patch_end = self.patches.len() as u32;
+        }
+        self.nodes.push(node);
+        self.nodes.len() as u32 - 1
+    }
+
+    fn build_upper(&mut self, roots: &[u32]) -> u32 {
+        if roots.len() == 1 {
+            return roots[0];
+        }
+        let mid = roots.len() / 2;
+        let a = self.build_upper(&roots[..mid]);
+        let b = self.build_upper(&roots[mid..]);
+        let (na, nb) = (self.nodes[a as usize], self.nodes[b as usize]);
+        self.nodes.push(Node {
+            bound: na.bound.union(&nb.bound),
+            eps: na.eps.max(nb.eps),
+            children: [a, b],
+            patch_start: 0,
+            patch_end: 0,
+        });
+        self.nodes.len() as u32 - 1
+    }
+
     /// Exact tree (eps = 0) of given profile pieces, each split into leaves of sweep at most
     /// `max_sweep` (arcs) or length at most `max_len` (segments). Used for analytic solids
     /// (spheres, tori, cylinders) whose profiles are exactly arcs and segments.
@@ -251,5 +325,21 @@ impl QueryTree {
             ProfileArc::Segment { start, end } => (end - start).normalize(),
         };
         orientation * Vector2::new(t.y, -t.x)
+    }
+}
+
+/// A biarc tree arc as a profile piece.
+pub fn piece_of_arc(a: &BiarcArc) -> ProfileArc {
+    match (a.center(), a.angle_range()) {
+        (Some(center), Some((phi_start, _))) if !a.is_segment() => ProfileArc::Arc {
+            center,
+            radius: a.radius(),
+            phi_start,
+            sweep: a.sweep,
+        },
+        _ => ProfileArc::Segment {
+            start: a.start,
+            end: a.end,
+        },
     }
 }

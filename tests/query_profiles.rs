@@ -1,0 +1,134 @@
+//! Distance queries on NURBS profiles (biarc trees with eps > 0) against the independent
+//! dense-sampling reference of `tests/reference`: separated, nearly touching and
+//! overlapping poses. Asserts the certified interval contains the reference (up to the
+//! reference's own error) and the value is within the interval width of it.
+
+mod reference;
+
+use nalgebra::{Isometry3, Point2, Translation3, UnitQuaternion, Vector3};
+use reference::{reference, REFERENCE_ERROR};
+use revdist::nurbs::NurbsCurve;
+use revdist::profile::Profile;
+use revdist::query::{distance, QueryOptions};
+use revdist::solid::Solid;
+use std::sync::Arc;
+
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn f(&mut self) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn rotation(&mut self) -> UnitQuaternion<f64> {
+        let v = Vector3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5);
+        UnitQuaternion::from_scaled_axis(v * 7.0)
+    }
+    pub fn unit(&mut self) -> Vector3<f64> {
+        loop {
+            let v = Vector3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5);
+            if v.norm() > 0.1 && v.norm() < 0.5 {
+                return v.normalize();
+            }
+        }
+    }
+}
+
+fn p(x: f64, y: f64) -> Point2<f64> {
+    Point2::new(x, y)
+}
+
+/// Vase: flat bottom, a cubic wall with a concave neck, flat top (open on the axis).
+fn vase() -> Profile {
+    let pieces = vec![
+        NurbsCurve::line(p(0.0, 0.0), p(0.5, 0.0)).unwrap(),
+        NurbsCurve::bezier(vec![p(0.5, 0.0), p(0.9, 0.4), p(0.1, 0.8), p(0.4, 1.2)]).unwrap(),
+        NurbsCurve::line(p(0.4, 1.2), p(0.0, 1.2)).unwrap(),
+    ];
+    Profile::new("vase", pieces).unwrap()
+}
+
+/// Ring: exact rational circle of radius 0.15 around (0.6, 0).
+fn ring() -> Profile {
+    let (c, r) = (p(0.6, 0.0), 0.15);
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let pts = [
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (0.0, 1.0),
+        (-1.0, 1.0),
+        (-1.0, 0.0),
+        (-1.0, -1.0),
+        (0.0, -1.0),
+        (1.0, -1.0),
+        (1.0, 0.0),
+    ]
+    .iter()
+    .map(|&(x, y)| p(c.x + r * x, c.y + r * y))
+    .collect();
+    let knots = vec![0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0];
+    let weights = vec![1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
+    let circle = NurbsCurve::new(2, knots, pts, Some(weights)).unwrap();
+    Profile::new("ring", vec![circle]).unwrap()
+}
+
+fn check(a: &Solid, b: &Solid, label: &str) {
+    let pos = a.relative_pose(b);
+    let r = reference(a.profile.as_deref().unwrap(), b.profile.as_deref().unwrap(), &pos);
+    let d = distance(a, b, &QueryOptions::default());
+    let e = REFERENCE_ERROR;
+    eprintln!(
+        "{label}: ref {:.3e} nested {} | [{:.6e}, {:.6e}] value {:.6e} overlap {} pairs {} leaves {}",
+        r.distance, r.nested, d.lower, d.upper, d.value, d.overlap, d.stats.node_pairs, d.stats.leaf_tests
+    );
+    assert!(
+        d.lower <= r.distance + e && r.distance <= d.upper + e,
+        "{label}: reference {} (surface {}, nested {}) outside [{}, {}]",
+        r.distance,
+        r.surface_distance,
+        r.nested,
+        d.lower,
+        d.upper
+    );
+    assert!(
+        (d.value - r.distance).abs() <= d.upper - d.lower + e,
+        "{label}: value {} vs reference {}",
+        d.value,
+        r.distance
+    );
+    if d.overlap {
+        assert!(r.distance <= e, "{label}: overlap claimed, reference {}", r.distance);
+    }
+}
+
+fn pose(t: Vector3<f64>, r: UnitQuaternion<f64>) -> Isometry3<f64> {
+    Isometry3::from_parts(Translation3::from(t), r)
+}
+
+#[test]
+fn vase_and_ring_random_poses() {
+    let mut rng = Rng(5);
+    let eps = 1e-3;
+    let vase = Solid::from_profile(Arc::new(vase()), eps).unwrap();
+    let ring = Solid::from_profile(Arc::new(ring()), eps).unwrap();
+    for i in 0..12 {
+        let (a, b) = if i % 2 == 0 { (&vase, &ring) } else { (&ring, &vase) };
+        let t = Vector3::new(rng.f() * 2.4 - 1.2, rng.f() * 2.4 - 1.2, rng.f() * 2.4 - 0.6);
+        let b = b.with_pose(pose(t, rng.rotation()));
+        check(a, &b, &format!("case {i}"));
+    }
+}
+
+#[test]
+fn ring_hanging_in_the_vase_neck() {
+    // The ring's axis horizontal, its hole around the vase wall at the neck height.
+    let eps = 1e-4;
+    let vase = Solid::from_profile(Arc::new(vase()), eps).unwrap();
+    let ring = Solid::from_profile(Arc::new(ring()), eps).unwrap();
+    // The ring (hole radius 0.45) slid over the top (radius 0.4) onto the neck (radius
+    // about 0.36 near z = 0.85), tilted and pushed sideways against the neck.
+    for (k, (dx, tilt)) in [(0.0, 0.0), (0.05, 0.2), (0.08, 0.3), (0.09, 0.1)].iter().enumerate() {
+        let rot = UnitQuaternion::from_scaled_axis(Vector3::y() * *tilt);
+        let b = ring.with_pose(pose(Vector3::new(*dx, 0.0, 0.85), rot));
+        check(&vase, &b, &format!("neck {k}"));
+    }
+}
