@@ -17,7 +17,10 @@ const SLACK: f64 = 1e-9;
 struct Rng(u64);
 impl Rng {
     fn f(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
     fn rotation(&mut self) -> UnitQuaternion<f64> {
@@ -94,11 +97,23 @@ fn check(a: &Solid, b: &Solid, reference: f64, label: &str) {
         d.value
     );
     // Exact trees: the interval closes up to round-off, so the test is sharp.
-    assert!(d.upper - d.lower <= 1e-8, "{label}: gap {} - {}", d.upper, d.lower);
+    assert!(
+        d.upper - d.lower <= 1e-8,
+        "{label}: gap {} - {}",
+        d.upper,
+        d.lower
+    );
     if reference > 1e-6 {
-        assert!(!d.overlap, "{label}: overlap claimed at distance {reference}");
+        assert!(
+            !d.overlap,
+            "{label}: overlap claimed at distance {reference}"
+        );
         let w = (d.point_a - d.point_b).norm();
-        assert!((w - d.value).abs() < 1e-7, "{label}: witness distance {w} vs {}", d.value);
+        assert!(
+            (w - d.value).abs() < 1e-7,
+            "{label}: witness distance {w} vs {}",
+            d.value
+        );
     }
 }
 
@@ -156,21 +171,36 @@ fn interlocked_rings_down_to_1e9_clearance() {
     let mut rng = Rng(2);
     for i in 0..24 {
         let big = 1.0;
-        let rot = UnitQuaternion::from_scaled_axis(Vector3::x() * (PI / 2.0 + (rng.f() - 0.5) * 0.6));
-        let p = pose(Vector3::new(big * (0.7 + 0.6 * rng.f()), 0.1 * rng.f(), 0.0), rot);
+        let rot =
+            UnitQuaternion::from_scaled_axis(Vector3::x() * (PI / 2.0 + (rng.f() - 0.5) * 0.6));
+        let p = pose(
+            Vector3::new(big * (0.7 + 0.6 * rng.f()), 0.1 * rng.f(), 0.0),
+            rot,
+        );
         let dmm = circle_circle(big, big, &p);
         let clearance = 10f64.powf(-9.0 + 8.0 * (i as f64 / 23.0));
         let small = 0.5 * (dmm - clearance);
         let a = ring(big, small);
         let b = ring(big, small).with_pose(p);
-        check(&a, &b, clearance, &format!("rings {i} clearance {clearance:e}"));
+        check(
+            &a,
+            &b,
+            clearance,
+            &format!("rings {i} clearance {clearance:e}"),
+        );
     }
 }
 
 #[test]
 fn sphere_centred_on_ring_axis_and_inside_hole() {
     let a = ring(1.0, 0.3);
-    for (z, rs) in [(0.0, 0.5), (0.0, 0.7), (0.5, 0.4), (1.2, 0.3), (0.0, 0.69999)] {
+    for (z, rs) in [
+        (0.0, 0.5),
+        (0.0, 0.7),
+        (0.5, 0.4),
+        (1.2, 0.3),
+        (0.0, 0.69999),
+    ] {
         let b = sphere(rs).with_pose(pose(Vector3::new(0.0, 0.0, z), UnitQuaternion::identity()));
         let reference = ((1.0f64.hypot(z)) - 0.3 - rs).max(0.0);
         check(&a, &b, reference, &format!("sphere on axis z {z} r {rs}"));
@@ -182,16 +212,25 @@ fn capped_cylinders_parallel_faces_and_crossed_axes() {
     let a = cylinder(1.0, 0.5);
     // Coaxial stack: flat faces parallel, continuum of closest points.
     for gap in [1e-9, 1e-5, 0.3] {
-        let b = cylinder(0.6, 0.2).with_pose(pose(Vector3::new(0.0, 0.0, 0.7 + gap), UnitQuaternion::identity()));
+        let b = cylinder(0.6, 0.2).with_pose(pose(
+            Vector3::new(0.0, 0.0, 0.7 + gap),
+            UnitQuaternion::identity(),
+        ));
         check(&a, &b, gap, &format!("coaxial stack gap {gap}"));
     }
     // Parallel axes, offset, faces parallel.
     for gap in [1e-9, 1e-4, 0.2] {
-        let b = cylinder(0.6, 0.2).with_pose(pose(Vector3::new(0.9, 0.3, 0.7 + gap), UnitQuaternion::identity()));
+        let b = cylinder(0.6, 0.2).with_pose(pose(
+            Vector3::new(0.9, 0.3, 0.7 + gap),
+            UnitQuaternion::identity(),
+        ));
         check(&a, &b, gap, &format!("offset stack gap {gap}"));
     }
     // Side by side, parallel axes: distance between the cylindrical faces.
-    let b = cylinder(0.6, 0.2).with_pose(pose(Vector3::new(1.8, 0.0, 0.1), UnitQuaternion::identity()));
+    let b = cylinder(0.6, 0.2).with_pose(pose(
+        Vector3::new(1.8, 0.0, 0.1),
+        UnitQuaternion::identity(),
+    ));
     check(&a, &b, 0.2, "side by side");
     // Crossed axes (intersecting at a point above the top face).
     let rot = UnitQuaternion::from_scaled_axis(Vector3::x() * (PI / 2.0));
@@ -212,7 +251,11 @@ fn sphere_against_capped_cylinder_random_poses() {
     let a = cylinder(0.8, 0.6);
     for i in 0..60 {
         let rs = 0.1 + 0.4 * rng.f();
-        let c = Vector3::new(rng.f() * 3.0 - 1.5, rng.f() * 3.0 - 1.5, rng.f() * 3.0 - 1.5);
+        let c = Vector3::new(
+            rng.f() * 3.0 - 1.5,
+            rng.f() * 3.0 - 1.5,
+            rng.f() * 3.0 - 1.5,
+        );
         // Distance from the centre to the solid cylinder.
         let rho = c.x.hypot(c.y);
         let dr = (rho - 0.8).max(0.0);

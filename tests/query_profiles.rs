@@ -16,7 +16,10 @@ use std::sync::Arc;
 pub struct Rng(pub u64);
 impl Rng {
     pub fn f(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
     pub fn rotation(&mut self) -> UnitQuaternion<f64> {
@@ -65,7 +68,9 @@ fn ring() -> Profile {
     .iter()
     .map(|&(x, y)| p(c.x + r * x, c.y + r * y))
     .collect();
-    let knots = vec![0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0];
+    let knots = vec![
+        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+    ];
     let weights = vec![1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
     let circle = NurbsCurve::new(2, knots, pts, Some(weights)).unwrap();
     Profile::new("ring", vec![circle]).unwrap()
@@ -73,7 +78,11 @@ fn ring() -> Profile {
 
 fn check(a: &Solid, b: &Solid, label: &str) {
     let pos = a.relative_pose(b);
-    let r = reference(a.profile.as_deref().unwrap(), b.profile.as_deref().unwrap(), &pos);
+    let r = reference(
+        a.profile.as_deref().unwrap(),
+        b.profile.as_deref().unwrap(),
+        &pos,
+    );
     let d = distance(a, b, &QueryOptions::default());
     let e = REFERENCE_ERROR;
     eprintln!(
@@ -96,7 +105,11 @@ fn check(a: &Solid, b: &Solid, label: &str) {
         r.distance
     );
     if d.overlap {
-        assert!(r.distance <= e, "{label}: overlap claimed, reference {}", r.distance);
+        assert!(
+            r.distance <= e,
+            "{label}: overlap claimed, reference {}",
+            r.distance
+        );
     }
 }
 
@@ -111,8 +124,16 @@ fn vase_and_ring_random_poses() {
     let vase = Solid::from_profile(Arc::new(vase()), eps).unwrap();
     let ring = Solid::from_profile(Arc::new(ring()), eps).unwrap();
     for i in 0..12 {
-        let (a, b) = if i % 2 == 0 { (&vase, &ring) } else { (&ring, &vase) };
-        let t = Vector3::new(rng.f() * 2.4 - 1.2, rng.f() * 2.4 - 1.2, rng.f() * 2.4 - 0.6);
+        let (a, b) = if i % 2 == 0 {
+            (&vase, &ring)
+        } else {
+            (&ring, &vase)
+        };
+        let t = Vector3::new(
+            rng.f() * 2.4 - 1.2,
+            rng.f() * 2.4 - 1.2,
+            rng.f() * 2.4 - 0.6,
+        );
         let b = b.with_pose(pose(t, rng.rotation()));
         check(a, &b, &format!("case {i}"));
     }
@@ -126,7 +147,10 @@ fn ring_hanging_in_the_vase_neck() {
     let ring = Solid::from_profile(Arc::new(ring()), eps).unwrap();
     // The ring (hole radius 0.45) slid over the top (radius 0.4) onto the neck (radius
     // about 0.36 near z = 0.85), tilted and pushed sideways against the neck.
-    for (k, (dx, tilt)) in [(0.0, 0.0), (0.05, 0.2), (0.08, 0.3), (0.09, 0.1)].iter().enumerate() {
+    for (k, (dx, tilt)) in [(0.0, 0.0), (0.05, 0.2), (0.08, 0.3), (0.09, 0.1)]
+        .iter()
+        .enumerate()
+    {
         let rot = UnitQuaternion::from_scaled_axis(Vector3::y() * *tilt);
         let b = ring.with_pose(pose(Vector3::new(*dx, 0.0, 0.85), rot));
         check(&vase, &b, &format!("neck {k}"));

@@ -15,6 +15,10 @@ use crate::profile::ProfileKind;
 use nalgebra::{Point2, Point3};
 use std::f64::consts::TAU;
 
+/// Relative offset from the axis used to classify points on the axis (far above round-off,
+/// far below any feature of a profile).
+const AXIS_NUDGE: f64 = 1e-10;
+
 /// Classification of a point against a profile region.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Inside {
@@ -45,7 +49,11 @@ fn swept_angle(piece: &ProfileArc, x: Point2<f64>) -> f64 {
             let in_segment = inside_circle && side_mid * side_x > 0.0;
             let full = sweep.abs() >= TAU - 1e-12;
             if full {
-                return if inside_circle { sweep.signum() * TAU } else { 0.0 };
+                return if inside_circle {
+                    sweep.signum() * TAU
+                } else {
+                    0.0
+                };
             }
             if in_segment {
                 chord + sweep.signum() * TAU
@@ -60,8 +68,11 @@ fn swept_angle(piece: &ProfileArc, x: Point2<f64>) -> f64 {
 pub fn point_in_profile(tree: &QueryTree, m: Point2<f64>) -> Inside {
     let mut total = 0.0;
     let mut margin = f64::INFINITY;
+    // A point on the axis is classified like its neighbours at small rho > 0 (the axis
+    // closure of an open profile is interior to the solid, not boundary).
+    let w = Point2::new(m.x.max(AXIS_NUDGE * (1.0 + m.coords.norm())), m.y);
     for p in &tree.chain {
-        total += swept_angle(p, m);
+        total += swept_angle(p, w);
         margin = margin.min(p.closest_point(m).0);
     }
     if tree.kind == ProfileKind::OpenOnAxis {
@@ -70,7 +81,7 @@ pub fn point_in_profile(tree: &QueryTree, m: Point2<f64>) -> Inside {
                 start: last.end(),
                 end: first.start(),
             };
-            total += swept_angle(&closing, m);
+            total += swept_angle(&closing, w);
         }
     }
     Inside {
@@ -112,7 +123,7 @@ mod tests {
         ] {
             let r = point_in_profile(&sphere, Point2::new(m.0, m.1));
             assert_eq!(r.inside, inside, "{m:?}");
-            let truth = ((m.0 * m.0 + m.1 * m.1) as f64).sqrt();
+            let truth = (m.0 * m.0 + m.1 * m.1).sqrt();
             assert!((r.margin - (truth - 1.0).abs()).abs() < 1e-12);
         }
         // Ring: full circle of radius 0.3 around (1, 0), clockwise.

@@ -12,8 +12,8 @@ use super::bounds::BoundKind;
 use super::containment::point_in_solid;
 use super::refine::refine_on_profiles;
 use super::traverse::{traverse, Budget, TraversalOptions, TraversalStats};
-use crate::solid::Solid;
 use super::tree::QueryTree;
+use crate::solid::Solid;
 use nalgebra::{Isometry3, Point3};
 
 /// What the caller asks of a query.
@@ -73,7 +73,12 @@ pub fn distance(a: &Solid, b: &Solid, opts: &QueryOptions) -> Distance {
 }
 
 /// [`distance`] with a warm start from `cache`, which is updated.
-pub fn distance_cached(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
+pub fn distance_cached(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+    cache: &mut QueryCache,
+) -> Distance {
     let pos_ab = a.relative_pose(b);
     let topts = TraversalOptions {
         tolerance: opts.tolerance,
@@ -114,7 +119,11 @@ pub fn distance_cached(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Qu
     let q_in_a = point_in_solid(&a.tree, &s.point_b);
     let p_in_b = point_in_solid(&b.tree, &(pos_ba * s.point_a));
     if q_in_a.inside || p_in_b.inside {
-        let margin = if q_in_a.inside { q_in_a.margin } else { p_in_b.margin };
+        let margin = if q_in_a.inside {
+            q_in_a.margin
+        } else {
+            p_in_b.margin
+        };
         if certain_overlap(margin) {
             return overlap_result(world(&s.point_a), world(&s.point_b), s.stats);
         }

@@ -31,7 +31,10 @@ pub enum ProfileArc {
         sweep: f64,
     },
     /// Straight piece from `start` to `end` (an arc of zero curvature).
-    Segment { start: Point2<f64>, end: Point2<f64> },
+    Segment {
+        start: Point2<f64>,
+        end: Point2<f64>,
+    },
 }
 
 /// 2-D cross product.
@@ -332,7 +335,12 @@ impl Patch {
 
     /// Critical feet from the meridian-plane point `xm` (rho >= 0) in the plane with radial
     /// direction `e`, covering the piece and its mirror image.
-    fn critical_feet_in_plane(&self, xm: Point2<f64>, e: &Vector3<f64>, out: &mut Vec<Point3<f64>>) {
+    fn critical_feet_in_plane(
+        &self,
+        xm: Point2<f64>,
+        e: &Vector3<f64>,
+        out: &mut Vec<Point3<f64>>,
+    ) {
         for mirror in [1.0, -1.0] {
             // Work with the mirrored point instead of the mirrored piece.
             let xs = Point2::new(mirror * xm.x, xm.y);
@@ -437,4 +445,3 @@ impl Patch {
         }
     }
 }
-

@@ -284,7 +284,10 @@ fn boundary_vs_patch(
         // Crossings of the extended surface: F = level.
         match o.core() {
             Core::Circle {
-                r_major, z, r_minor, ..
+                r_major,
+                z,
+                r_minor,
+                ..
             } => {
                 for s in [1.0, -1.0] {
                     let level = r_minor * r_minor - r_major * r_major - z * z;
@@ -528,9 +531,23 @@ fn annulus_overlap(
     let cb = pos_ab * Point3::new(0.0, 0.0, b0.y);
     let w = nalgebra::Vector2::new(cb.x, cb.y);
     let d = w.norm();
-    let u = if d > 0.0 { w / d } else { nalgebra::Vector2::x() };
+    let u = if d > 0.0 {
+        w / d
+    } else {
+        nalgebra::Vector2::x()
+    };
     // Points on the line of centres: x = t u, |x| = |t|, |x - w| = |t - d|.
-    let cands = [ra0, ra1, -ra0, -ra1, d + rb0, d - rb0, d + rb1, d - rb1, 0.5 * d];
+    let cands = [
+        ra0,
+        ra1,
+        -ra0,
+        -ra1,
+        d + rb0,
+        d - rb0,
+        d + rb1,
+        d - rb1,
+        0.5 * d,
+    ];
     for t in cands {
         let ta = t.abs();
         let tb = (t - d).abs();
@@ -604,7 +621,10 @@ mod tests {
     pub(crate) struct Rng(u64);
     impl Rng {
         pub(crate) fn f(&mut self) -> f64 {
-            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (self.0 >> 11) as f64 / (1u64 << 53) as f64
         }
     }
@@ -670,7 +690,7 @@ mod tests {
                 let x = pos * surface_point(b, s, th);
                 a.point_distance(&x).0
             };
-            let (ns, nt) = (40, 96);
+            let (ns, nt) = (24, 64);
             let mut cand = Vec::new();
             for i in 0..=ns {
                 for j in 0..nt {
@@ -680,7 +700,7 @@ mod tests {
             }
             cand.sort_by(|x, y| x.0.partial_cmp(&y.0).unwrap());
             let mut best = f64::INFINITY;
-            for &(mut v, mut s, mut th) in cand.iter().take(12) {
+            for &(mut v, mut s, mut th) in cand.iter().take(6) {
                 let (mut hs, mut ht) = (1.0 / ns as f64, TAU / nt as f64);
                 while hs > 1e-13 {
                     let mut moved = false;
@@ -732,7 +752,7 @@ mod tests {
     }
 
     #[test]
-    fn debug_failures() {
+    fn random_patch_pairs_match_reference() {
         let mut rng = Rng(7);
         let mut fails = Vec::new();
         for i in 0..150 {
@@ -743,27 +763,31 @@ mod tests {
                 fails.push(e);
             }
         }
-        for f in &fails {
-            eprintln!("{f}");
-        }
-        assert!(fails.is_empty(), "{} failures", fails.len());
+        assert!(fails.is_empty(), "{} failures: {fails:#?}", fails.len());
     }
 
+    /// Long sweep: `PATCH_STRESS=5000 cargo test --release -- --ignored patch_stress`.
     #[test]
-    fn random_patch_pairs_match_reference() {
-        let mut rng = Rng(7);
-        for i in 0..150 {
+    #[ignore]
+    fn patch_stress() {
+        let n: usize = std::env::var("PATCH_STRESS").ok().and_then(|v| v.parse().ok()).unwrap_or(1000);
+        let mut rng = Rng(12345);
+        let mut fails = Vec::new();
+        for i in 0..n {
             let a = Patch::new(random_piece(&mut rng));
             let b = Patch::new(random_piece(&mut rng));
-            let pos = random_pose(&mut rng, 3.0);
-            check(&a, &b, &pos, &format!("case {i}"));
+            let pos = random_pose(&mut rng, 2.0);
+            if let Err(e) = try_check(&a, &b, &pos, &format!("case {i}")) {
+                fails.push(e);
+            }
         }
+        assert!(fails.is_empty(), "{} failures of {n}: {fails:#?}", fails.len());
     }
 
     #[test]
     fn degenerate_poses_match_reference() {
         let mut rng = Rng(11);
-        for i in 0..60 {
+        for i in 0..40 {
             let a = Patch::new(random_piece(&mut rng));
             let b = Patch::new(random_piece(&mut rng));
             let t = Vector3::new(0.0, 0.0, rng.f() * 2.0 - 1.0);

@@ -13,7 +13,10 @@ use nalgebra::{Point2, Vector2};
 /// One intersection point of two pieces, if they meet.
 pub fn intersection(a: &ProfileArc, b: &ProfileArc) -> Option<Point2<f64>> {
     match (*a, *b) {
-        (ProfileArc::Segment { start: p0, end: p1 }, ProfileArc::Segment { start: q0, end: q1 }) => {
+        (
+            ProfileArc::Segment { start: p0, end: p1 },
+            ProfileArc::Segment { start: q0, end: q1 },
+        ) => {
             let (r, s) = (p1 - p0, q1 - q0);
             let den = cross2(r, s);
             let w = q0 - p0;
@@ -69,7 +72,8 @@ pub fn intersection(a: &ProfileArc, b: &ProfileArc) -> Option<Point2<f64>> {
             for sgn in [1.0, -1.0] {
                 let p = c1 + x * e + sgn * h * perp;
                 let (v1, v2) = (p - c1, p - c2);
-                if a.arc_param(v1.y.atan2(v1.x)).is_some() && b.arc_param(v2.y.atan2(v2.x)).is_some()
+                if a.arc_param(v1.y.atan2(v1.x)).is_some()
+                    && b.arc_param(v2.y.atan2(v2.x)).is_some()
                 {
                     return Some(p);
                 }
@@ -205,11 +209,13 @@ mod tests {
     fn piece_distance_matches_sampling() {
         let mut seed = 99u64;
         let mut rnd = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
         for _ in 0..300 {
-            let mut piece = |rnd: &mut dyn FnMut() -> f64| {
+            let piece = |rnd: &mut dyn FnMut() -> f64| {
                 if rnd() < 0.4 {
                     ProfileArc::Segment {
                         start: Point2::new(rnd() * 2.0, rnd() * 2.0),

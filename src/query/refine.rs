@@ -30,7 +30,11 @@ pub struct Refined {
 }
 
 /// Closest point of the profile to the meridian point `m`: (distance, point, piece, t).
-fn closest_on_profile(profile: &Profile, m: Point2<f64>, hint: Option<(usize, f64)>) -> (f64, Point2<f64>, usize, f64) {
+fn closest_on_profile(
+    profile: &Profile,
+    m: Point2<f64>,
+    hint: Option<(usize, f64)>,
+) -> (f64, Point2<f64>, usize, f64) {
     let mut best = (f64::INFINITY, m, 0usize, 0.0);
     let mut starts: Vec<(usize, f64)> = Vec::new();
     if let Some(h) = hint {
@@ -83,7 +87,11 @@ fn newton_project(c: &NurbsCurve, m: Point2<f64>, mut t: f64) -> f64 {
 }
 
 /// Closest point on the exact surface of revolution of `profile` to `x` (profile frame).
-fn project(profile: &Profile, x: &Point3<f64>, hint: Option<(usize, f64)>) -> (Point3<f64>, usize, f64) {
+fn project(
+    profile: &Profile,
+    x: &Point3<f64>,
+    hint: Option<(usize, f64)>,
+) -> (Point3<f64>, usize, f64) {
     let rho = x.x.hypot(x.y);
     let e = if rho > 0.0 {
         Vector3::new(x.x / rho, x.y / rho, 0.0)

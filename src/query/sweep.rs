@@ -145,8 +145,7 @@ pub fn level_angles(c: &ParamCircle, f: &RadialField, level: f64, out: &mut Vec<
             out.push(bisect(|t| h_and_f(c, f, t).1 - level, t0, t1, g0));
         }
         let gp = gs[(i + n - 1) % n];
-        if g0 != 0.0 && g0.abs() <= gp.abs() && g0.abs() <= g1.abs() && g0.signum() == gp.signum()
-        {
+        if g0 != 0.0 && g0.abs() <= gp.abs() && g0.abs() <= g1.abs() && g0.signum() == gp.signum() {
             let t = golden_min(|t| (h_and_f(c, f, t).1 - level).abs(), t0 - step, t1);
             out.push(t.rem_euclid(TAU));
         }

@@ -208,33 +208,34 @@ pub fn traverse(
     let tol = opts.tolerance.max(0.0);
     let mut heap = BinaryHeap::new();
     let mut pruned_min = f64::INFINITY;
-    let evaluate = |a: u32, b: u32, key: f64, out: &mut SurfaceBounds, stats: &mut TraversalStats| {
-        stats.leaf_tests += 1;
-        let r = leaf_pair(ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba);
-        stats.patch_tests += r.patch_tests;
-        let e = ta.nodes[a as usize].eps + tb.nodes[b as usize].eps;
-        if r.d + e < out.upper {
-            out.upper = r.d + e;
-        }
-        if r.d < out.approx {
-            out.approx = r.d;
-            out.point_a = r.pa;
-            out.point_b = r.pb;
-            out.best_pair = Some((a, b));
-        }
-        let meets = r.d == 0.0 || r.penetration.is_some();
-        if let Some(p) = r.penetration {
-            if out.penetration.is_none_or(|(_, _, m)| p.2 > m) {
-                out.penetration = Some(p);
+    let evaluate =
+        |a: u32, b: u32, key: f64, out: &mut SurfaceBounds, stats: &mut TraversalStats| {
+            stats.leaf_tests += 1;
+            let r = leaf_pair(ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba);
+            stats.patch_tests += r.patch_tests;
+            let e = ta.nodes[a as usize].eps + tb.nodes[b as usize].eps;
+            if r.d + e < out.upper {
+                out.upper = r.d + e;
             }
-        }
-        if meets {
-            out.surfaces_meet = true;
-            f64::NEG_INFINITY
-        } else {
-            key.max(r.d - e)
-        }
-    };
+            if r.d < out.approx {
+                out.approx = r.d;
+                out.point_a = r.pa;
+                out.point_b = r.pb;
+                out.best_pair = Some((a, b));
+            }
+            let meets = r.d == 0.0 || r.penetration.is_some();
+            if let Some(p) = r.penetration {
+                if out.penetration.is_none_or(|(_, _, m)| p.2 > m) {
+                    out.penetration = Some(p);
+                }
+            }
+            if meets {
+                out.surfaces_meet = true;
+                f64::NEG_INFINITY
+            } else {
+                key.max(r.d - e)
+            }
+        };
     if let Some((a, b)) = warm {
         if (a as usize) < ta.nodes.len()
             && (b as usize) < tb.nodes.len()

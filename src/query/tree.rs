@@ -135,7 +135,10 @@ impl QueryTree {
             nodes: Vec::with_capacity(2 * leaves.len()),
             patches: Vec::new(),
             root: NO_CHILD,
-            chain: leaves.iter().flat_map(|l| l.pieces.iter().copied()).collect(),
+            chain: leaves
+                .iter()
+                .flat_map(|l| l.pieces.iter().copied())
+                .collect(),
             kind,
             eps: leaves.iter().map(|l| l.eps).fold(0.0, f64::max),
         };
@@ -188,8 +191,17 @@ impl QueryTree {
             kind,
             eps: 0.0,
         };
-        let roots: Vec<u32> = bt.spirals().iter().map(|s| t.copy_subtree(bt, s.root)).collect();
-        t.eps = t.nodes.iter().filter(|n| n.is_leaf()).map(|n| n.eps).fold(0.0, f64::max);
+        let roots: Vec<u32> = bt
+            .spirals()
+            .iter()
+            .map(|s| t.copy_subtree(bt, s.root))
+            .collect();
+        t.eps = t
+            .nodes
+            .iter()
+            .filter(|n| n.is_leaf())
+            .map(|n| n.eps)
+            .fold(0.0, f64::max);
         if !roots.is_empty() {
             t.root = t.build_upper(&roots);
         }
@@ -259,7 +271,9 @@ impl QueryTree {
         for p in pieces {
             let n = match *p {
                 ProfileArc::Arc { sweep, .. } => (sweep.abs() / max_sweep).ceil().max(1.0),
-                ProfileArc::Segment { start, end } => ((end - start).norm() / max_len).ceil().max(1.0),
+                ProfileArc::Segment { start, end } => {
+                    ((end - start).norm() / max_len).ceil().max(1.0)
+                }
             } as usize;
             for i in 0..n {
                 let (s0, s1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
@@ -315,7 +329,12 @@ impl QueryTree {
     }
 
     /// Outward unit normal of the profile piece `piece` at its planar point `m`.
-    pub fn outward_normal(&self, piece: &ProfileArc, m: Point2<f64>, orientation: f64) -> Vector2<f64> {
+    pub fn outward_normal(
+        &self,
+        piece: &ProfileArc,
+        m: Point2<f64>,
+        orientation: f64,
+    ) -> Vector2<f64> {
         // Tangent at the closest parameter; the region lies to the left when orientation>0.
         let t = match *piece {
             ProfileArc::Arc { center, sweep, .. } => {

@@ -125,7 +125,13 @@ fn newton(c: &NurbsCurve, m: Point2<f64>, mut t: f64) -> f64 {
 
 /// Minimum over the surface of `b` (placed in a's frame by `pos_ab`) of the distance to
 /// the surface of `a`, with the best point of `b` (in a's frame).
-fn one_side(a: &RefProfile, b: &RefProfile, pos_ab: &Isometry3<f64>, n_t: usize, n_theta: usize) -> (f64, Point3<f64>) {
+fn one_side(
+    a: &RefProfile,
+    b: &RefProfile,
+    pos_ab: &Isometry3<f64>,
+    n_t: usize,
+    n_theta: usize,
+) -> (f64, Point3<f64>) {
     let f = |piece: usize, t: f64, th: f64| a.surface_distance(&(pos_ab * b.point(piece, t, th)));
     let mut cands: Vec<(f64, usize, f64, f64)> = Vec::new();
     for (i, c) in b.profile.pieces().iter().enumerate() {
@@ -146,7 +152,10 @@ fn one_side(a: &RefProfile, b: &RefProfile, pos_ab: &Isometry3<f64>, n_t: usize,
         if starts.len() >= 8 {
             break;
         }
-        if starts.iter().all(|s| s.1 != c.1 || (s.2 - c.2).abs() > 1e-9 || (s.3 - c.3).abs() > 1e-9) {
+        if starts
+            .iter()
+            .all(|s| s.1 != c.1 || (s.2 - c.2).abs() > 1e-9 || (s.3 - c.3).abs() > 1e-9)
+        {
             starts.push(*c);
         }
     }
@@ -155,7 +164,16 @@ fn one_side(a: &RefProfile, b: &RefProfile, pos_ab: &Isometry3<f64>, n_t: usize,
         let (mut ht, mut hth) = ((t1 - t0) / n_t as f64, TAU / n_theta as f64);
         while ht > 1e-13 * (t1 - t0) || hth > 1e-13 {
             let mut moved = false;
-            for (dt, dth) in [(ht, 0.0), (-ht, 0.0), (0.0, hth), (0.0, -hth), (ht, hth), (-ht, -hth), (ht, -hth), (-ht, hth)] {
+            for (dt, dth) in [
+                (ht, 0.0),
+                (-ht, 0.0),
+                (0.0, hth),
+                (0.0, -hth),
+                (ht, hth),
+                (-ht, -hth),
+                (ht, -hth),
+                (-ht, hth),
+            ] {
                 let t2 = (t + dt).clamp(t0, t1);
                 let v2 = f(i, t2, th + dth);
                 if v2 < v {
@@ -196,12 +214,25 @@ pub fn reference(a: &Profile, b: &Profile, pos_ab: &Isometry3<f64>) -> Reference
     let (d2, _) = one_side(&rb, &ra, &pos_ab.inverse(), 24, 48);
     let surface = d1.min(d2);
     // Containment of one boundary point of each in the other.
-    let pb0 = pos_ab * rb.point(0, b.pieces()[0].domain().0 * 0.5 + b.pieces()[0].domain().1 * 0.5, 0.3);
-    let pa0 = ra.point(0, a.pieces()[0].domain().0 * 0.5 + a.pieces()[0].domain().1 * 0.5, 0.3);
+    let pb0 = pos_ab
+        * rb.point(
+            0,
+            b.pieces()[0].domain().0 * 0.5 + b.pieces()[0].domain().1 * 0.5,
+            0.3,
+        );
+    let pa0 = ra.point(
+        0,
+        a.pieces()[0].domain().0 * 0.5 + a.pieces()[0].domain().1 * 0.5,
+        0.3,
+    );
     let pa0_in_b = pos_ab.inverse() * pa0;
     let nested = ra.contains(Point2::new(pb0.x.hypot(pb0.y), pb0.z))
         || rb.contains(Point2::new(pa0_in_b.x.hypot(pa0_in_b.y), pa0_in_b.z));
-    let distance = if nested || surface <= REFERENCE_ERROR { 0.0 } else { surface };
+    let distance = if nested || surface <= REFERENCE_ERROR {
+        0.0
+    } else {
+        surface
+    };
     Reference {
         distance,
         surface_distance: surface,
