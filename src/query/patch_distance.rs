@@ -130,11 +130,104 @@ pub fn patch_distance_with(
             parallel_pair(ea, eb, pos_ab, &mut |p, q| best.consider(p, q));
         }
     }
+    // (d) intersection loops inside both patches: sign changes of the other surface's
+    // implicit function along meridians (through every interior candidate and four
+    // fixed ones).
+    if best.d > 0.0 {
+        let mut th_a: Vec<f64> = FIXED_MERIDIANS.to_vec();
+        let mut th_b: Vec<f64> = FIXED_MERIDIANS.to_vec();
+        for (p, q) in &pairs {
+            th_a.push(p.y.atan2(p.x));
+            let qb = pos_ba * q;
+            th_b.push(qb.y.atan2(qb.x));
+        }
+        meridian_crossings(b, a, pos_ab, &th_b, &mut |q, p| best.consider(p, q));
+        meridian_crossings(a, b, &pos_ba, &th_a, &mut |p, q| {
+            best.consider(pos_ab * p, pos_ab * q)
+        });
+    }
     PatchDistance {
         distance: best.d,
         point_a: best.p,
         point_b: best.q,
         interior_pairs: pairs,
+    }
+}
+
+/// Meridians always scanned for crossings (an intersection loop that winds around a
+/// patch's axis meets every meridian of that patch).
+const FIXED_MERIDIANS: [f64; 4] = [0.0, 1.5707963267948966, 3.141592653589793, 4.71238898038469];
+
+/// Samples along a meridian for the crossing scan.
+const MERIDIAN_SAMPLES: usize = 32;
+
+/// Implicit function of the extended surface of `o` at `x` (o's frame): zero exactly on
+/// the revolved full circle (or line) of the piece, both mirror halves.
+fn implicit(o: &Patch, x: &Point3<f64>) -> f64 {
+    let rho = x.x.hypot(x.y);
+    match o.core() {
+        Core::Circle {
+            r_major,
+            z,
+            r_minor,
+        } => {
+            let d1 = (rho - r_major).hypot(x.z - z) - r_minor;
+            if r_major == 0.0 {
+                return d1; // both halves coincide (sphere)
+            }
+            d1 * ((rho + r_major).hypot(x.z - z) - r_minor)
+        }
+        Core::Line { n, c } => {
+            let h1 = n.x * rho + n.y * x.z - c;
+            if n.x == 0.0 {
+                return h1; // flat annulus: both halves coincide
+            }
+            h1 * (-n.x * rho + n.y * x.z - c)
+        }
+    }
+}
+
+/// Points of `g`'s meridians (at angles `thetas`, frame G) where the implicit function of
+/// `o` changes sign, each emitted with its closest point on `o` (O's frame): a crossing of
+/// the two patches when that distance is zero. `pos_og` places G in O.
+fn meridian_crossings(
+    g: &Patch,
+    o: &Patch,
+    pos_og: &Isometry3<f64>,
+    thetas: &[f64],
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let n = MERIDIAN_SAMPLES;
+    for &th in thetas {
+        let e = e_rho(th);
+        let at = |s: f64| pos_og * lift(g.arc.point_at(s), &e);
+        let mut prev = implicit(o, &at(0.0));
+        for i in 1..=n {
+            let (s0, s1) = ((i - 1) as f64 / n as f64, i as f64 / n as f64);
+            let cur = implicit(o, &at(s1));
+            if prev == 0.0 || prev.signum() != cur.signum() {
+                let (mut lo, mut hi, mut flo) = (s0, s1, prev);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    let fm = implicit(o, &at(mid));
+                    if fm == 0.0 {
+                        lo = mid;
+                        hi = mid;
+                        break;
+                    }
+                    if fm.signum() == flo.signum() {
+                        lo = mid;
+                        flo = fm;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                let x = at(0.5 * (lo + hi));
+                let (_, c) = o.point_distance(&x);
+                emit(x, c);
+            }
+            prev = cur;
+        }
     }
 }
 
@@ -770,7 +863,10 @@ mod tests {
     #[test]
     #[ignore]
     fn patch_stress() {
-        let n: usize = std::env::var("PATCH_STRESS").ok().and_then(|v| v.parse().ok()).unwrap_or(1000);
+        let n: usize = std::env::var("PATCH_STRESS")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(1000);
         let mut rng = Rng(12345);
         let mut fails = Vec::new();
         for i in 0..n {
@@ -781,7 +877,11 @@ mod tests {
                 fails.push(e);
             }
         }
-        assert!(fails.is_empty(), "{} failures of {n}: {fails:#?}", fails.len());
+        assert!(
+            fails.is_empty(),
+            "{} failures of {n}: {fails:#?}",
+            fails.len()
+        );
     }
 
     #[test]

@@ -236,16 +236,22 @@ pub fn traverse(
                 key.max(r.d - e)
             }
         };
+    // Warm start: evaluate the last best leaf pair first for a tight upper bound; its
+    // resolved key is kept so the traversal does not measure it twice.
+    let mut warm_key: Option<(u32, u32, f64)> = None;
     if let Some((a, b)) = warm {
         if (a as usize) < ta.nodes.len()
             && (b as usize) < tb.nodes.len()
             && ta.nodes[a as usize].is_leaf()
             && tb.nodes[b as usize].is_leaf()
         {
-            // Only sets the upper bound; the pair is found again by the traversal.
-            evaluate(a, b, f64::NEG_INFINITY, &mut out, &mut stats);
-            out.surfaces_meet = false;
-            out.penetration = None;
+            let key = evaluate(a, b, f64::NEG_INFINITY, &mut out, &mut stats);
+            if out.surfaces_meet {
+                out.lower = 0.0;
+                out.stats = stats;
+                return out;
+            }
+            warm_key = Some((a, b, key));
         }
     }
     let root_key = {
@@ -287,7 +293,10 @@ pub fn traverse(
         stats.node_pairs += 1;
         let (na, nb) = (&ta.nodes[e.a as usize], &tb.nodes[e.b as usize]);
         if na.is_leaf() && nb.is_leaf() {
-            let key = evaluate(e.a, e.b, e.key, &mut out, &mut stats);
+            let key = match warm_key {
+                Some((a, b, k)) if (a, b) == (e.a, e.b) => k.max(e.key),
+                _ => evaluate(e.a, e.b, e.key, &mut out, &mut stats),
+            };
             if out.surfaces_meet {
                 // Lower bound can only be <= 0 now.
                 lower = f64::NEG_INFINITY;

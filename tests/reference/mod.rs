@@ -56,20 +56,31 @@ impl<'a> RefProfile<'a> {
 
     /// Planar distance from `m` to the profile curve (realised at a curve point).
     pub fn curve_distance(&self, m: Point2<f64>) -> f64 {
-        // Best few samples, each refined by Newton on its piece.
-        let mut best = [(f64::INFINITY, 0usize, 0.0f64); 3];
-        for &(i, t, p) in &self.samples {
-            let d = (p - m).norm_squared();
-            if d < best[2].0 {
-                best[2] = (d, i, t);
-                best.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap());
+        // Best sample, and the best one away from it (another local minimum), each refined
+        // by Newton on its piece.
+        let mut order: Vec<(f64, usize)> = Vec::with_capacity(2);
+        let mut best = (f64::INFINITY, 0usize);
+        for (k, s) in self.samples.iter().enumerate() {
+            let d = (s.2 - m).norm_squared();
+            if d < best.0 {
+                best = (d, k);
             }
         }
-        let mut out = f64::INFINITY;
-        for &(_, i, t) in &best {
-            if !t.is_finite() {
-                continue;
+        order.push(best);
+        let mut second = (f64::INFINITY, usize::MAX);
+        for (k, s) in self.samples.iter().enumerate() {
+            let far = s.0 != self.samples[best.1].0 || k.abs_diff(best.1) > 2;
+            let d = (s.2 - m).norm_squared();
+            if far && d < second.0 {
+                second = (d, k);
             }
+        }
+        if second.1 != usize::MAX {
+            order.push(second);
+        }
+        let mut out = f64::INFINITY;
+        for &(_, k) in &order {
+            let (i, t, _) = self.samples[k];
             let c = &self.profile.pieces()[i];
             let t = newton(c, m, t);
             out = out.min((c.eval(t) - m).norm());
@@ -115,7 +126,7 @@ fn newton(c: &NurbsCurve, m: Point2<f64>, mut t: f64) -> f64 {
             break;
         }
         let tn = (t - g / h).clamp(t0, t1);
-        if (tn - t).abs() < 1e-16 * (t1 - t0) {
+        if (tn - t).abs() < 1e-14 * (t1 - t0) {
             return tn;
         }
         t = tn;
@@ -149,7 +160,7 @@ fn one_side(
     // Refine the best distinct starts.
     let mut starts: Vec<(f64, usize, f64, f64)> = Vec::new();
     for c in &cands {
-        if starts.len() >= 8 {
+        if starts.len() >= 5 {
             break;
         }
         if starts
