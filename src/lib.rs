@@ -10,6 +10,8 @@
 //! Data flows one way: [`nurbs`] curves form a [`profile`]; built-in profiles live in
 //! [`models`].
 
+pub mod models;
 pub mod nurbs;
 pub mod profile;
 pub mod profile_file;
+pub mod svg;
