@@ -1,23 +1,118 @@
-//! Planar NURBS curves in the (rho, z) half-plane (paper section 4.1: the profile curve).
-//! API skeleton: implementation in progress.
+//! Planar NURBS curves in the (rho, z) half-plane: the profile curves of paper section 4.1.
+//!
+//! A curve of degree `p` has `n` control points, `n + p + 1` non-decreasing knots and, when it
+//! is rational, `n` positive weights. Knot vectors are *clamped* (the first and last knots have
+//! multiplicity `p + 1`) so that a curve starts at its first control point and ends at its last,
+//! which is what joining pieces end to start needs. Evaluation works in homogeneous coordinates
+//! `(w rho, w z, w)` with the B-spline basis (de Boor / Cox recurrences), so circles and arcs
+//! written as rational quadratics are exact.
 
 use nalgebra::{Point2, Vector2};
 
-/// Errors building a NURBS curve.
+/// Highest derivative order [`NurbsCurve::derivatives`] returns (curvature and its derivative
+/// need the third).
+pub const MAX_DERIVATIVE: usize = 3;
+
+/// Why a set of NURBS data does not describe a curve.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CurveError {
-    #[error("placeholder")]
-    Placeholder,
+    /// Degree zero curves are piecewise constant and have no tangent.
+    #[error("degree must be at least 1, got {0}")]
+    ZeroDegree(usize),
+    /// Fewer than `degree + 1` control points.
+    #[error("degree {degree} needs at least {needed} control points, got {found}")]
+    TooFewPoints {
+        degree: usize,
+        needed: usize,
+        found: usize,
+    },
+    /// The knot count must be `points + degree + 1`.
+    #[error(
+        "wrong knot count: {points} points of degree {degree} need {expected} knots, got {found}"
+    )]
+    WrongKnotCount {
+        degree: usize,
+        points: usize,
+        expected: usize,
+        found: usize,
+    },
+    /// Knots must be non-decreasing.
+    #[error("knots decrease at index {index}: {previous} > {value}")]
+    DecreasingKnots {
+        index: usize,
+        previous: f64,
+        value: f64,
+    },
+    /// The first and last knots must each repeat `degree + 1` times.
+    #[error("knot vector is not clamped: the first and last {multiplicity} knots must be equal")]
+    NotClamped { multiplicity: usize },
+    /// An interior knot repeated more than `degree` times breaks the curve apart.
+    #[error("interior knot {value} has multiplicity {multiplicity} > degree {degree}")]
+    KnotMultiplicity {
+        value: f64,
+        multiplicity: usize,
+        degree: usize,
+    },
+    /// The parameter domain has zero length.
+    #[error("empty parameter domain [{start}, {end}]")]
+    EmptyDomain { start: f64, end: f64 },
+    /// The weight count must equal the point count.
+    #[error("{points} control points but {weights} weights")]
+    WrongWeightCount { points: usize, weights: usize },
+    /// Weights must be finite and positive (the convex-hull property and a pole-free curve).
+    #[error("weight {index} is {value}: weights must be finite and > 0")]
+    NonPositiveWeight { index: usize, value: f64 },
+    /// A knot or coordinate is NaN or infinite.
+    #[error("{what} {index} is not finite")]
+    NonFinite { what: &'static str, index: usize },
+    /// A split parameter outside the open domain.
+    #[error("parameter {t} is not inside the open domain ({start}, {end})")]
+    ParameterOutOfRange { t: f64, start: f64, end: f64 },
 }
 
 /// Axis-aligned box in the (rho, z) plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb2 {
+    /// Lower-left corner (min rho, min z).
     pub min: Point2<f64>,
+    /// Upper-right corner (max rho, max z).
     pub max: Point2<f64>,
 }
 
-/// A NURBS curve of any degree; rational when weights are given.
+impl Aabb2 {
+    /// The smallest box holding all `points`; `None` when there are none.
+    pub fn from_points<'a>(points: impl IntoIterator<Item = &'a Point2<f64>>) -> Option<Self> {
+        let mut it = points.into_iter();
+        let first = *it.next()?;
+        Some(it.fold(
+            Aabb2 {
+                min: first,
+                max: first,
+            },
+            |b, p| b.including(*p),
+        ))
+    }
+
+    /// This box grown to hold `p`.
+    pub fn including(self, p: Point2<f64>) -> Self {
+        Aabb2 {
+            min: Point2::new(self.min.x.min(p.x), self.min.y.min(p.y)),
+            max: Point2::new(self.max.x.max(p.x), self.max.y.max(p.y)),
+        }
+    }
+
+    /// The smallest box holding both.
+    pub fn union(self, other: Aabb2) -> Self {
+        self.including(other.min).including(other.max)
+    }
+
+    /// Length of the diagonal.
+    pub fn diagonal(&self) -> f64 {
+        (self.max - self.min).norm()
+    }
+}
+
+/// A NURBS curve of any degree in the (rho, z) plane; rational when weights are given.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NurbsCurve {
     degree: usize,
@@ -26,69 +121,571 @@ pub struct NurbsCurve {
     weights: Option<Vec<f64>>,
 }
 
-/// One rational Bezier span of a NURBS curve, in homogeneous form.
+/// One Bezier span of a NURBS curve, in homogeneous form.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BezierSpan {
-    /// Parameter interval of the span in the parent curve.
+    /// Start of the span's parameter interval in the parent curve.
     pub t0: f64,
+    /// End of the span's parameter interval in the parent curve.
     pub t1: f64,
-    /// Homogeneous control points (w*rho, w*z, w).
+    /// Homogeneous Bernstein control points `(w rho, w z, w)`, `degree + 1` of them; the span is
+    /// `sum B_i(s) P_i` with `s = (t - t0) / (t1 - t0)` in [0, 1].
     pub homogeneous: Vec<[f64; 3]>,
 }
 
+impl BezierSpan {
+    /// Point of the span at local parameter `s` in [0, 1] (de Casteljau, homogeneous).
+    pub fn eval_local(&self, s: f64) -> Point2<f64> {
+        let mut q = self.homogeneous.clone();
+        let n = q.len();
+        for r in 1..n {
+            for i in 0..n - r {
+                let next = q[i + 1];
+                for (qc, nc) in q[i].iter_mut().zip(next) {
+                    *qc = (1.0 - s) * *qc + s * nc;
+                }
+            }
+        }
+        Point2::new(q[0][0] / q[0][2], q[0][1] / q[0][2])
+    }
+}
+
 impl NurbsCurve {
+    /// Builds a curve after checking every invariant listed in [`CurveError`].
     pub fn new(
         degree: usize,
         knots: Vec<f64>,
         points: Vec<Point2<f64>>,
         weights: Option<Vec<f64>>,
     ) -> Result<Self, CurveError> {
-        let _ = (degree, knots, points, weights);
-        todo!()
+        if degree == 0 {
+            return Err(CurveError::ZeroDegree(degree));
+        }
+        if points.len() < degree + 1 {
+            return Err(CurveError::TooFewPoints {
+                degree,
+                needed: degree + 1,
+                found: points.len(),
+            });
+        }
+        let expected = points.len() + degree + 1;
+        if knots.len() != expected {
+            return Err(CurveError::WrongKnotCount {
+                degree,
+                points: points.len(),
+                expected,
+                found: knots.len(),
+            });
+        }
+        if let Some(index) = knots.iter().position(|k| !k.is_finite()) {
+            return Err(CurveError::NonFinite {
+                what: "knot",
+                index,
+            });
+        }
+        if let Some(index) = points
+            .iter()
+            .position(|p| !p.x.is_finite() || !p.y.is_finite())
+        {
+            return Err(CurveError::NonFinite {
+                what: "control point",
+                index,
+            });
+        }
+        for i in 1..knots.len() {
+            if knots[i] < knots[i - 1] {
+                return Err(CurveError::DecreasingKnots {
+                    index: i,
+                    previous: knots[i - 1],
+                    value: knots[i],
+                });
+            }
+        }
+        let m = knots.len() - 1;
+        if knots[degree] != knots[0] || knots[m - degree] != knots[m] {
+            return Err(CurveError::NotClamped {
+                multiplicity: degree + 1,
+            });
+        }
+        let (start, end) = (knots[degree], knots[m - degree]);
+        if start >= end {
+            return Err(CurveError::EmptyDomain { start, end });
+        }
+        if knots[degree + 1] == start || knots[m - degree - 1] == end {
+            return Err(CurveError::KnotMultiplicity {
+                value: if knots[degree + 1] == start {
+                    start
+                } else {
+                    end
+                },
+                multiplicity: degree + 2,
+                degree,
+            });
+        }
+        let mut i = degree + 1;
+        while i < m - degree {
+            let mult = knots[i..].iter().take_while(|&&k| k == knots[i]).count();
+            if mult > degree && knots[i] < end {
+                return Err(CurveError::KnotMultiplicity {
+                    value: knots[i],
+                    multiplicity: mult,
+                    degree,
+                });
+            }
+            i += mult;
+        }
+        if let Some(w) = &weights {
+            if w.len() != points.len() {
+                return Err(CurveError::WrongWeightCount {
+                    points: points.len(),
+                    weights: w.len(),
+                });
+            }
+            if let Some(index) = w.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
+                return Err(CurveError::NonPositiveWeight {
+                    index,
+                    value: w[index],
+                });
+            }
+        }
+        Ok(NurbsCurve {
+            degree,
+            knots,
+            points,
+            weights,
+        })
     }
+
+    /// A polynomial Bezier curve of degree `points.len() - 1` on [0, 1].
+    pub fn bezier(points: Vec<Point2<f64>>) -> Result<Self, CurveError> {
+        let degree = points.len().saturating_sub(1);
+        let knots = clamped_bezier_knots(degree);
+        NurbsCurve::new(degree, knots, points, None)
+    }
+
+    /// The straight segment from `a` to `b` (degree 1 on [0, 1]).
+    pub fn line(a: Point2<f64>, b: Point2<f64>) -> Result<Self, CurveError> {
+        NurbsCurve::bezier(vec![a, b])
+    }
+
+    /// Polynomial degree.
     pub fn degree(&self) -> usize {
         self.degree
     }
+
+    /// The knot vector.
     pub fn knots(&self) -> &[f64] {
         &self.knots
     }
+
+    /// Control points in (rho, z).
     pub fn points(&self) -> &[Point2<f64>] {
         &self.points
     }
+
+    /// Weights, `None` for a polynomial (all weights 1) curve.
     pub fn weights(&self) -> Option<&[f64]> {
         self.weights.as_deref()
     }
+
+    /// Whether the curve has weights.
+    pub fn is_rational(&self) -> bool {
+        self.weights.is_some()
+    }
+
+    fn weight(&self, i: usize) -> f64 {
+        self.weights.as_ref().map_or(1.0, |w| w[i])
+    }
+
+    fn homogeneous(&self, i: usize) -> [f64; 3] {
+        let w = self.weight(i);
+        [w * self.points[i].x, w * self.points[i].y, w]
+    }
+
+    /// The parameter domain `[t_start, t_end]`.
     pub fn domain(&self) -> (f64, f64) {
-        todo!()
+        (
+            self.knots[self.degree],
+            self.knots[self.knots.len() - 1 - self.degree],
+        )
     }
+
+    /// First point (the first control point: the knot vector is clamped).
+    pub fn start(&self) -> Point2<f64> {
+        self.points[0]
+    }
+
+    /// Last point.
+    pub fn end(&self) -> Point2<f64> {
+        self.points[self.points.len() - 1]
+    }
+
+    /// Point at parameter `t` (clamped to the domain).
     pub fn eval(&self, t: f64) -> Point2<f64> {
-        let _ = t;
-        todo!()
+        let d = self.derivatives_up_to(t, 0);
+        Point2::from(d[0])
     }
-    /// Point and derivatives 1..=3 at t: `[C, C', C'', C''']`.
+
+    /// Point and derivatives 1..=3 at `t`: `[C, C', C'', C''']`, the point as a vector.
     pub fn derivatives(&self, t: f64) -> [Vector2<f64>; 4] {
-        let _ = t;
-        todo!()
+        self.derivatives_up_to(t, MAX_DERIVATIVE)
     }
+
+    /// `[C, C', ..., C^(order)]` at `t`, zero beyond `order`. Rational derivatives follow
+    /// from the homogeneous ones by Leibniz' rule: `A^(k) = sum_i binom(k,i) w^(i) C^(k-i)`.
+    fn derivatives_up_to(&self, t: f64, order: usize) -> [Vector2<f64>; 4] {
+        let p = self.degree;
+        let (start, end) = self.domain();
+        let t = t.clamp(start, end);
+        let span = find_span(p, &self.knots, t);
+        let ders = basis_derivatives(p, &self.knots, span, t, order);
+        let mut hom = [[0.0f64; 3]; 4];
+        for (k, row) in ders.iter().enumerate().take(order + 1) {
+            for (j, b) in row.iter().enumerate().take(p + 1) {
+                let h = self.homogeneous(span - p + j);
+                for c in 0..3 {
+                    hom[k][c] += b * h[c];
+                }
+            }
+        }
+        let mut out = [Vector2::zeros(); 4];
+        for k in 0..=order {
+            let mut v = Vector2::new(hom[k][0], hom[k][1]);
+            for i in 1..=k {
+                v -= binomial(k, i) * hom[i][2] * out[k - i];
+            }
+            out[k] = v / hom[0][2];
+        }
+        out
+    }
+
+    /// Signed curvature `(x' z'' - z' x'') / |C'|^3` at `t` (positive when turning left in the
+    /// (rho, z) plane); NaN where the speed vanishes.
     pub fn curvature(&self, t: f64) -> f64 {
-        let _ = t;
-        todo!()
+        let d = self.derivatives_up_to(t, 2);
+        cross(d[1], d[2]) / d[1].norm().powi(3)
     }
-    pub fn split(&self, t: f64) -> (NurbsCurve, NurbsCurve) {
-        let _ = t;
-        todo!()
+
+    /// Derivative of the signed curvature with respect to the parameter.
+    pub fn curvature_derivative(&self, t: f64) -> f64 {
+        let d = self.derivatives(t);
+        let speed_sq = d[1].norm_squared();
+        let n = cross(d[1], d[2]);
+        let n_prime = cross(d[1], d[3]);
+        (n_prime * speed_sq - 3.0 * n * d[1].dot(&d[2])) / speed_sq.powf(2.5)
     }
+
+    /// Inserts knot `t` until it has multiplicity `degree` (Boehm's algorithm) and splits the
+    /// curve there: the two pieces together trace exactly the original curve.
+    pub fn split(&self, t: f64) -> Result<(NurbsCurve, NurbsCurve), CurveError> {
+        let (start, end) = self.domain();
+        if !(t > start && t < end) {
+            return Err(CurveError::ParameterOutOfRange { t, start, end });
+        }
+        let p = self.degree;
+        let refined = self.with_knot_multiplicity(t, p);
+        let first_after = refined.knots.iter().position(|&k| k > t).unwrap_or(0);
+        // The p copies of t sit just before `first_after`; the control point at the split is
+        // the last one of the left piece and the first one of the right piece.
+        let split_index = first_after - p - 1;
+        let mut left_knots: Vec<f64> = refined.knots[..first_after].to_vec();
+        left_knots.push(t);
+        let mut right_knots = vec![t];
+        right_knots.extend_from_slice(&refined.knots[first_after - p..]);
+        let left_n = split_index + 1;
+        let pts = &refined.points;
+        let ws = refined.weights.as_ref();
+        let left = NurbsCurve::new(
+            p,
+            left_knots,
+            pts[..left_n].to_vec(),
+            ws.map(|w| w[..left_n].to_vec()),
+        )?;
+        let right = NurbsCurve::new(
+            p,
+            right_knots,
+            pts[split_index..].to_vec(),
+            ws.map(|w| w[split_index..].to_vec()),
+        )?;
+        Ok((left, right))
+    }
+
+    /// This curve with knot `t` (inside the domain) raised to multiplicity `target`.
+    fn with_knot_multiplicity(&self, t: f64, target: usize) -> NurbsCurve {
+        let mut curve = self.clone();
+        let existing = curve.knots.iter().filter(|&&k| k == t).count();
+        for _ in existing..target {
+            curve = curve.insert_knot_once(t);
+        }
+        curve
+    }
+
+    /// Boehm knot insertion of `t` once, in homogeneous coordinates.
+    fn insert_knot_once(&self, t: f64) -> NurbsCurve {
+        let p = self.degree;
+        let k = find_span(p, &self.knots, t);
+        let n = self.points.len();
+        let mut hom: Vec<[f64; 3]> = Vec::with_capacity(n + 1);
+        for i in 0..=n {
+            if i + p <= k {
+                hom.push(self.homogeneous(i));
+            } else if i > k {
+                hom.push(self.homogeneous(i - 1));
+            } else {
+                let a = (t - self.knots[i]) / (self.knots[i + p] - self.knots[i]);
+                let (q0, q1) = (self.homogeneous(i - 1), self.homogeneous(i));
+                hom.push([
+                    (1.0 - a) * q0[0] + a * q1[0],
+                    (1.0 - a) * q0[1] + a * q1[1],
+                    (1.0 - a) * q0[2] + a * q1[2],
+                ]);
+            }
+        }
+        let mut knots = self.knots.clone();
+        knots.insert(k + 1, t);
+        from_homogeneous(p, knots, &hom, self.is_rational())
+    }
+
+    /// The same point set traversed backwards, on the same domain.
     pub fn reversed(&self) -> NurbsCurve {
-        todo!()
+        let (a, b) = (self.knots[0], self.knots[self.knots.len() - 1]);
+        NurbsCurve {
+            degree: self.degree,
+            knots: self.knots.iter().rev().map(|k| a + b - k).collect(),
+            points: self.points.iter().rev().copied().collect(),
+            weights: self
+                .weights
+                .as_ref()
+                .map(|w| w.iter().rev().copied().collect()),
+        }
     }
+
+    /// Box of the control points. With positive weights the curve lies in the convex hull of
+    /// its control points, so this box certainly contains the curve.
     pub fn bounding_box(&self) -> Aabb2 {
-        todo!()
+        Aabb2::from_points(&self.points).expect("a curve has at least two control points")
     }
+
+    /// Arc length to within `tolerance` (absolute), by adaptive Gauss-Legendre quadrature of
+    /// the speed over each knot span.
     pub fn arc_length(&self, tolerance: f64) -> f64 {
-        let _ = tolerance;
-        todo!()
+        let tolerance = tolerance.max(f64::EPSILON);
+        let spans = self.distinct_spans();
+        let per_span = tolerance / spans.len() as f64;
+        spans
+            .iter()
+            .map(|&(a, b)| self.adaptive_length(a, b, per_span, 0))
+            .sum()
     }
+
+    fn gauss_length(&self, a: f64, b: f64) -> f64 {
+        let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
+        GAUSS_8
+            .iter()
+            .map(|&(x, w)| w * self.derivatives_up_to(m + h * x, 1)[1].norm())
+            .sum::<f64>()
+            * h
+    }
+
+    fn adaptive_length(&self, a: f64, b: f64, tol: f64, depth: u32) -> f64 {
+        let whole = self.gauss_length(a, b);
+        let mid = 0.5 * (a + b);
+        let halves = self.gauss_length(a, mid) + self.gauss_length(mid, b);
+        if (whole - halves).abs() <= tol || depth >= MAX_LENGTH_DEPTH {
+            halves
+        } else {
+            self.adaptive_length(a, mid, 0.5 * tol, depth + 1)
+                + self.adaptive_length(mid, b, 0.5 * tol, depth + 1)
+        }
+    }
+
+    /// The non-empty knot spans `[k_i, k_{i+1}]` of the domain.
+    pub fn distinct_spans(&self) -> Vec<(f64, f64)> {
+        let (start, end) = self.domain();
+        let mut out = Vec::new();
+        for w in self.knots.windows(2) {
+            if w[1] > w[0] && w[0] >= start && w[1] <= end {
+                out.push((w[0], w[1]));
+            }
+        }
+        out
+    }
+
+    /// The curve as Bezier spans (every interior knot raised to multiplicity `degree`), in
+    /// homogeneous form: what Bernstein-form root isolation works on.
     pub fn bezier_spans(&self) -> Vec<BezierSpan> {
-        todo!()
+        let p = self.degree;
+        let mut curve = self.clone();
+        let interior: Vec<f64> = {
+            let (s, e) = self.domain();
+            let mut v: Vec<f64> = self
+                .knots
+                .iter()
+                .copied()
+                .filter(|&k| k > s && k < e)
+                .collect();
+            v.dedup();
+            v
+        };
+        for &t in &interior {
+            curve = curve.with_knot_multiplicity(t, p);
+        }
+        let mut bounds = vec![self.domain().0];
+        bounds.extend(interior);
+        bounds.push(self.domain().1);
+        bounds
+            .windows(2)
+            .enumerate()
+            .map(|(i, w)| BezierSpan {
+                t0: w[0],
+                t1: w[1],
+                homogeneous: (i * p..=i * p + p).map(|j| curve.homogeneous(j)).collect(),
+            })
+            .collect()
     }
 }
+
+/// Eight-point Gauss-Legendre nodes and weights on [-1, 1].
+const GAUSS_8: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_2, 0.101_228_536_290_376_26),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (-0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (0.960_289_856_497_536_2, 0.101_228_536_290_376_26),
+];
+
+/// Recursion cap of the adaptive arc-length quadrature (2^30 sub-intervals per span).
+const MAX_LENGTH_DEPTH: u32 = 30;
+
+fn clamped_bezier_knots(degree: usize) -> Vec<f64> {
+    let mut k = vec![0.0; degree + 1];
+    k.extend(std::iter::repeat_n(1.0, degree + 1));
+    k
+}
+
+fn from_homogeneous(p: usize, knots: Vec<f64>, hom: &[[f64; 3]], rational: bool) -> NurbsCurve {
+    NurbsCurve {
+        degree: p,
+        knots,
+        points: hom
+            .iter()
+            .map(|h| Point2::new(h[0] / h[2], h[1] / h[2]))
+            .collect(),
+        weights: rational.then(|| hom.iter().map(|h| h[2]).collect()),
+    }
+}
+
+/// z-component of the 2-D cross product.
+pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// Index `i` of the knot span `[k_i, k_{i+1})` holding `t`, with `degree <= i < n`; the
+/// domain's end belongs to the last non-empty span.
+pub fn find_span(degree: usize, knots: &[f64], t: f64) -> usize {
+    let n = knots.len() - degree - 1; // number of control points
+    if t >= knots[n] {
+        let mut i = n - 1;
+        while knots[i] == knots[i + 1] {
+            i -= 1;
+        }
+        return i;
+    }
+    if t <= knots[degree] {
+        return degree;
+    }
+    let (mut lo, mut hi) = (degree, n);
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if t < knots[mid] {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    lo
+}
+
+/// The `degree + 1` non-zero B-spline basis functions at `t` and the span index they start
+/// after: `N_{span-degree+j}(t)` is `values[j]`. For least-squares fitting.
+pub fn basis_functions(degree: usize, knots: &[f64], t: f64) -> (usize, Vec<f64>) {
+    let span = find_span(degree, knots, t);
+    let d = basis_derivatives(degree, knots, span, t, 0);
+    (span, d[0].clone())
+}
+
+/// Basis functions and their derivatives up to `order` on `span` (Cox-de Boor recurrence
+/// with the divided-difference form of the derivatives).
+fn basis_derivatives(p: usize, knots: &[f64], span: usize, t: f64, order: usize) -> Vec<Vec<f64>> {
+    // ndu[j][r]: basis of degree j (upper triangle) and knot differences (lower triangle).
+    let mut ndu = vec![vec![0.0; p + 1]; p + 1];
+    let mut left = vec![0.0; p + 1];
+    let mut right = vec![0.0; p + 1];
+    ndu[0][0] = 1.0;
+    for j in 1..=p {
+        left[j] = t - knots[span + 1 - j];
+        right[j] = knots[span + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            ndu[j][r] = right[r + 1] + left[j - r];
+            let temp = ndu[r][j - 1] / ndu[j][r];
+            ndu[r][j] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        ndu[j][j] = saved;
+    }
+    let order = order.min(p);
+    let mut ders = vec![vec![0.0; p + 1]; order + 1];
+    for j in 0..=p {
+        ders[0][j] = ndu[j][p];
+    }
+    let mut a = vec![vec![0.0; p + 1]; 2];
+    for r in 0..=p {
+        let (mut s1, mut s2) = (0usize, 1usize);
+        a[0][0] = 1.0;
+        for k in 1..=order {
+            let mut d = 0.0;
+            let rk = r as isize - k as isize;
+            let pk = p - k;
+            if r >= k {
+                a[s2][0] = a[s1][0] / ndu[pk + 1][rk as usize];
+                d = a[s2][0] * ndu[rk as usize][pk];
+            }
+            let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
+            let j2 = if (r as isize - 1) <= pk as isize {
+                k - 1
+            } else {
+                p - r
+            };
+            for j in j1..=j2 {
+                let idx = (rk + j as isize) as usize;
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
+                d += a[s2][j] * ndu[idx][pk];
+            }
+            if r <= pk {
+                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                d += a[s2][k] * ndu[r][pk];
+            }
+            ders[k][r] = d;
+            std::mem::swap(&mut s1, &mut s2);
+        }
+    }
+    let mut factor = p as f64;
+    for (k, row) in ders.iter_mut().enumerate().skip(1) {
+        for v in row.iter_mut() {
+            *v *= factor;
+        }
+        factor *= (p - k) as f64;
+    }
+    ders
+}
+
+#[cfg(test)]
+mod tests;

@@ -227,15 +227,8 @@ impl SvgCanvas {
 
     /// Text at a screen position in pixels.
     pub fn text_px(&mut self, x: f64, y: f64, text: &str, size_px: f64, anchor: Anchor) {
-        let _ = writeln!(
-            self.body,
-            r#"<text x="{}" y="{}" font-family="sans-serif" font-size="{}" text-anchor="{}">{}</text>"#,
-            num(x),
-            num(y),
-            num(size_px),
-            anchor.as_str(),
-            escape(text)
-        );
+        self.body
+            .push_str(&text_element(x, y, text, size_px, anchor));
     }
 
     /// The canvas as a standalone SVG document.
@@ -277,15 +270,8 @@ impl SvgDocument {
 
     /// Text at a pixel position of the document.
     pub fn text_px(&mut self, x: f64, y: f64, text: &str, size_px: f64, anchor: Anchor) {
-        let _ = writeln!(
-            self.body,
-            r#"<text x="{}" y="{}" font-family="sans-serif" font-size="{}" text-anchor="{}">{}</text>"#,
-            num(x),
-            num(y),
-            num(size_px),
-            anchor.as_str(),
-            escape(text)
-        );
+        self.body
+            .push_str(&text_element(x, y, text, size_px, anchor));
     }
 
     /// The SVG text.
@@ -458,6 +444,18 @@ fn profiles_canvas(profiles: &[&Profile], options: &ProfileSvgOptions) -> SvgCan
         Anchor::Middle,
     );
     canvas
+}
+
+/// An SVG text element at a pixel position, with its line break.
+fn text_element(x: f64, y: f64, text: &str, size_px: f64, anchor: Anchor) -> String {
+    format!(
+        "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"{}\" text-anchor=\"{}\">{}</text>\n",
+        num(x),
+        num(y),
+        num(size_px),
+        anchor.as_str(),
+        escape(text)
+    )
 }
 
 /// Number formatting for SVG attributes: at most 3 decimals, no trailing zeros.

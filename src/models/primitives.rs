@@ -12,7 +12,7 @@ const MAX_ARC_SPAN_SWEEP: f64 = std::f64::consts::FRAC_PI_2;
 
 /// Straight segment from `a` to `b` as a degree-1 NURBS.
 pub fn line(a: Point2<f64>, b: Point2<f64>) -> Result<NurbsCurve, CurveError> {
-    NurbsCurve::new(1, vec![0.0, 0.0, 1.0, 1.0], vec![a, b], None)
+    NurbsCurve::line(a, b)
 }
 
 /// Straight segment from `a` to `b` as a degree-2 B-spline with collinear, evenly spaced
@@ -24,15 +24,7 @@ pub fn line_quadratic(a: Point2<f64>, b: Point2<f64>) -> Result<NurbsCurve, Curv
 
 /// Polynomial Bezier curve with the given control points (degree = points - 1).
 pub fn bezier(points: &[[f64; 2]]) -> Result<NurbsCurve, CurveError> {
-    let degree = points.len().saturating_sub(1);
-    let mut knots = vec![0.0; degree + 1];
-    knots.extend(std::iter::repeat_n(1.0, degree + 1));
-    NurbsCurve::new(
-        degree,
-        knots,
-        points.iter().map(|p| Point2::new(p[0], p[1])).collect(),
-        None,
-    )
+    NurbsCurve::bezier(points.iter().map(|p| Point2::new(p[0], p[1])).collect())
 }
 
 /// Exact circular arc of radius `radius` about `center` from angle `phi0` to `phi1`

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use revdist::models::{self, ModelError};
 use revdist::profile::Profile;
+use revdist::profile_file::{load_path, ProfileFileError};
 
 /// The built-in model `spec`, or the profile file at path `spec` when it is not a built-in
 /// name (built-in names win; write `./pawn` for a file called `pawn`).
@@ -23,9 +24,10 @@ pub fn load_profile(spec: &str) -> Result<Profile, Box<dyn std::error::Error>> {
 
 /// Read and validate a TOML profile file.
 pub fn read_profile_file(path: &str) -> Result<Profile, Box<dyn std::error::Error>> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read '{path}': {e}"))?;
-    revdist::profile_file::from_toml_str(&text)
-        .map_err(|e| format!("profile file '{path}': {e}").into())
+    load_path(Path::new(path)).map_err(|e| match e {
+        ProfileFileError::Io { .. } => e.to_string().into(),
+        _ => format!("profile file '{path}': {e}").into(),
+    })
 }
 
 /// Write `contents` to `path`, creating missing parent directories.

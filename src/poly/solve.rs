@@ -1,0 +1,344 @@
+//! Allocation-free kernels on Bernstein coefficient slices (polynomials on [0, 1]).
+//!
+//! Every function takes its scratch space from the caller, so the circle/circle hot path can
+//! run on stack arrays. [`crate::poly::bernstein`] wraps these kernels for owned polynomials.
+
+/// Relative rounding-noise factor for evaluating a Bernstein polynomial of degree n: the
+/// computed value differs from the exact one by at most about `2 n eps sum|b_i| B_i(t)`
+/// (de Casteljau / Horner backward-error bound, Farouki & Rajan 1987); we take 4 n eps for
+/// headroom. A value below this bound is indistinguishable from zero.
+pub const EVAL_NOISE_PER_DEGREE: f64 = 4.0 * f64::EPSILON;
+
+/// Safety cap on Newton/bisection steps for one isolated root (bisection alone needs at most
+/// 64 steps to reach adjacent doubles on [0, 1]).
+const MAX_REFINE_STEPS: usize = 100;
+
+/// Capacity of the subdivision stack. Depth-first bisection of [0, 1] down to widths of
+/// 2^-60 never holds more than 61 pending intervals.
+const STACK_CAP: usize = 64;
+
+/// Smallest interval width bisection will produce (below this, doubles are adjacent).
+const MIN_WIDTH: f64 = 1e-15;
+
+/// Evaluates the Bernstein polynomial with coefficients `c` at `t` in O(n) (Horner on
+/// t/(1-t), mirrored for t > 1/2 so the ratio stays <= 1).
+pub fn eval(c: &[f64], t: f64) -> f64 {
+    horner_bernstein(c, t, |x| x)
+}
+
+/// `sum |b_i| B_i(t)`: the scale against which rounding in [`eval`] is measured.
+pub fn eval_abs(c: &[f64], t: f64) -> f64 {
+    horner_bernstein(c, t, f64::abs)
+}
+
+/// `sum map(b_i) B_i(t)` by Horner's rule in the ratio t/(1-t) (or its mirror).
+#[inline]
+fn horner_bernstein(c: &[f64], t: f64, map: impl Fn(f64) -> f64) -> f64 {
+    let n = c.len() - 1;
+    if n == 0 {
+        return map(c[0]);
+    }
+    let (s, r, rev) = if t <= 0.5 {
+        (1.0 - t, t / (1.0 - t), false)
+    } else {
+        (t, (1.0 - t) / t, true)
+    };
+    let coef = |i: usize| map(if rev { c[n - i] } else { c[i] });
+    let mut binom = 1.0;
+    let mut acc = coef(n);
+    for i in (0..n).rev() {
+        binom = binom * (i + 1) as f64 / (n - i) as f64;
+        acc = acc * r + binom * coef(i);
+    }
+    acc * s.powi(n as i32)
+}
+
+/// Rounding-noise bound of [`eval`] at `t`, plus `coeff_noise` (the caller's absolute
+/// uncertainty of each coefficient, which propagates with weight sum B_i = 1).
+pub fn zero_tolerance(c: &[f64], t: f64, coeff_noise: f64) -> f64 {
+    let n = (c.len() - 1).max(1) as f64;
+    coeff_noise + EVAL_NOISE_PER_DEGREE * n * eval_abs(c, t)
+}
+
+/// Derivative coefficients (degree n-1) written to `out[..n]`: `n (b_{i+1} - b_i)`.
+pub fn derivative_into(c: &[f64], out: &mut [f64]) {
+    let n = c.len() - 1;
+    for i in 0..n {
+        out[i] = n as f64 * (c[i + 1] - c[i]);
+    }
+}
+
+/// De Casteljau split at `t`: `left` gets the piece on [0, t], `right` the piece on [t, 1]
+/// (both reparametrised to [0, 1]). `left`, `right` have the length of `c`.
+pub fn split(c: &[f64], t: f64, left: &mut [f64], right: &mut [f64]) {
+    let n = c.len() - 1;
+    right.copy_from_slice(c);
+    left[0] = c[0];
+    for (k, l) in left.iter_mut().enumerate().skip(1) {
+        for i in 0..=(n - k) {
+            right[i] = (1.0 - t) * right[i] + t * right[i + 1];
+        }
+        *l = right[0];
+    }
+}
+
+/// In-place de Casteljau: keeps the piece on [t, 1].
+fn keep_right(c: &mut [f64], t: f64) {
+    let n = c.len() - 1;
+    for k in 1..=n {
+        for i in 0..=(n - k) {
+            c[i] = (1.0 - t) * c[i] + t * c[i + 1];
+        }
+    }
+}
+
+/// In-place de Casteljau: keeps the piece on [0, t].
+fn keep_left(c: &mut [f64], t: f64) {
+    let n = c.len() - 1;
+    for k in 1..=n {
+        for i in (k..=n).rev() {
+            c[i] = (1.0 - t) * c[i - 1] + t * c[i];
+        }
+    }
+}
+
+/// Writes into `out` the coefficients of `c` restricted to [a, b] (0 <= a < b <= 1) and
+/// reparametrised to [0, 1].
+pub fn restrict_into(c: &[f64], a: f64, b: f64, out: &mut [f64]) {
+    out.copy_from_slice(c);
+    if b < 1.0 {
+        keep_left(out, b);
+    }
+    if a > 0.0 {
+        keep_right(out, a / b);
+    }
+}
+
+/// Number of sign changes in the coefficient sequence, exact zeros skipped (Descartes'
+/// rule in Bernstein form bounds the number of roots in (0, 1) by this count, with the same
+/// parity).
+pub fn sign_variations(c: &[f64]) -> usize {
+    let mut count = 0;
+    let mut last = 0.0f64;
+    for &x in c {
+        if x != 0.0 {
+            if last != 0.0 && (x > 0.0) != (last > 0.0) {
+                count += 1;
+            }
+            last = x;
+        }
+    }
+    count
+}
+
+/// Scratch length needed by [`odd_roots_into`] for `n + 1` coefficients.
+pub const fn odd_scratch_len(n_coeffs: usize) -> usize {
+    2 * n_coeffs
+}
+
+/// Finds the roots of odd multiplicity (sign changes) of `c` in the open interval (lo, hi)
+/// of [0, 1], each to within `t_tol`, and passes them in increasing order to `sink`.
+/// `scratch` must hold [`odd_scratch_len`] values.
+///
+/// Subdivision with the Bernstein sign-variation test: V = 0 discards a piece, V = 1 means
+/// exactly one simple crossing, which a safeguarded Newton iteration converges on. Pieces
+/// narrower than `t_tol` with V >= 2 report their midpoint when the end values differ in sign.
+pub fn odd_roots_into(
+    c: &[f64],
+    lo: f64,
+    hi: f64,
+    t_tol: f64,
+    scratch: &mut [f64],
+    sink: &mut impl FnMut(f64),
+) {
+    let m = c.len();
+    if m < 2 || hi <= lo {
+        return;
+    }
+    let (piece, rest) = scratch.split_at_mut(m);
+    let dpiece = &mut rest[..m - 1];
+    let tol = t_tol.max(MIN_WIDTH);
+    let mut stack = [(0.0f64, 0.0f64); STACK_CAP];
+    let mut top = 1;
+    stack[0] = (lo, hi);
+    while top > 0 {
+        top -= 1;
+        let (a, b) = stack[top];
+        restrict_into(c, a, b, piece);
+        let v = sign_variations(piece);
+        if v == 0 {
+            continue;
+        }
+        let (f0, f1) = (piece[0], piece[m - 1]);
+        if v == 1 && f0 != 0.0 && f1 != 0.0 {
+            derivative_into(piece, dpiece);
+            let x = refine_bracketed(piece, dpiece, tol / (b - a));
+            sink(a + x * (b - a));
+            continue;
+        }
+        if b - a <= tol || top + 2 > STACK_CAP {
+            if f0 * f1 < 0.0 {
+                sink(0.5 * (a + b));
+            }
+            continue;
+        }
+        // Split near the middle; avoid splitting exactly on a root (the zero would then
+        // sit on a piece boundary and be invisible to both halves' sign counts).
+        let mut mid = 0.5 * (a + b);
+        if eval(c, mid) == 0.0 {
+            mid = a + 0.4375 * (b - a);
+            if eval(c, mid) == 0.0 {
+                mid = a + 0.5625 * (b - a);
+            }
+        }
+        // Push right first so the left half is processed first (roots come out sorted).
+        stack[top] = (mid, b);
+        stack[top + 1] = (a, mid);
+        top += 2;
+    }
+}
+
+/// Converges on the single sign change of `q` in (0, 1) (q(0) q(1) < 0), returning the
+/// local parameter to within `x_tol`. Newton from the control-polygon crossing, falling back
+/// to bisection whenever a step leaves the bracket or fails to halve the residual.
+fn refine_bracketed(q: &[f64], dq: &[f64], x_tol: f64) -> f64 {
+    let n = q.len() - 1;
+    let neg_at_lo = q[0] < 0.0;
+    let (mut x0, mut x1) = (0.0f64, 1.0f64);
+    // Start where the control polygon crosses zero.
+    let mut x = 0.5;
+    for i in 0..n {
+        if (q[i] < 0.0) != (q[i + 1] < 0.0) && q[i] != 0.0 {
+            x = (i as f64 + q[i] / (q[i] - q[i + 1])) / n as f64;
+            break;
+        }
+    }
+    let mut dx_old = 1.0f64;
+    for _ in 0..MAX_REFINE_STEPS {
+        let f = eval(q, x);
+        if f == 0.0 {
+            return x;
+        }
+        if (f < 0.0) == neg_at_lo {
+            x0 = x;
+        } else {
+            x1 = x;
+        }
+        if x1 - x0 <= x_tol {
+            return 0.5 * (x0 + x1);
+        }
+        let df = eval(dq, x);
+        let step = if df != 0.0 { f / df } else { f64::INFINITY };
+        let xn = x - step;
+        if xn > x0 && xn < x1 && (2.0 * step).abs() <= dx_old.abs() {
+            dx_old = step;
+            x = xn;
+            if step.abs() <= 0.25 * x_tol {
+                return x;
+            }
+        } else {
+            dx_old = x1 - x0;
+            x = 0.5 * (x0 + x1);
+        }
+    }
+    x
+}
+
+/// Kind of a root candidate collected by [`roots_into`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RootKind {
+    /// The polynomial changes sign here.
+    #[default]
+    Odd,
+    /// A derivative root or endpoint where the polynomial vanishes within its noise bound
+    /// (even multiplicity, or a cluster of roots closer than rounding can resolve).
+    Even,
+}
+
+/// Scratch length (in f64) needed by [`roots_into`] for `n + 1` coefficients.
+pub const fn roots_scratch_len(n_coeffs: usize) -> usize {
+    3 * n_coeffs
+}
+
+/// Candidate-buffer length needed by [`roots_into`] for `n + 1` coefficients.
+pub const fn roots_candidate_len(n_coeffs: usize) -> usize {
+    2 * n_coeffs + 2
+}
+
+/// All distinct real roots of `c` in [0, 1], including even multiplicity, each to within
+/// `t_tol`, passed in increasing order to `sink` with their [`RootKind`].
+///
+/// Odd roots come from [`odd_roots_into`]. Even roots are sign changes of the derivative
+/// (and the endpoints) where |p| <= [`zero_tolerance`] (`coeff_noise` is the caller's
+/// absolute coefficient uncertainty). Candidates closer than `t_tol`, or separated only by
+/// values within the noise bound when one of them is an even candidate, are merged (the even
+/// candidate is kept: a derivative root locates a double root to full precision).
+/// `scratch`: [`roots_scratch_len`] values; `cand`: [`roots_candidate_len`] entries.
+pub fn roots_into(
+    c: &[f64],
+    t_tol: f64,
+    coeff_noise: f64,
+    scratch: &mut [f64],
+    cand: &mut [(f64, RootKind)],
+    sink: &mut impl FnMut(f64, RootKind),
+) {
+    let m = c.len();
+    if m < 2 {
+        return;
+    }
+    let (dc, rest) = scratch.split_at_mut(m - 1);
+    derivative_into(c, dc);
+    let cap = cand.len();
+    let mut count = 0usize;
+    let mut push = |x: f64, k: RootKind, count: &mut usize| {
+        if *count < cap {
+            cand[*count] = (x, k);
+            *count += 1;
+        }
+    };
+    if c[0].abs() <= zero_tolerance(c, 0.0, coeff_noise) {
+        push(0.0, RootKind::Even, &mut count);
+    }
+    {
+        let mut odd = |x: f64| push(x, RootKind::Odd, &mut count);
+        odd_roots_into(c, 0.0, 1.0, t_tol, rest, &mut odd);
+    }
+    if m > 2 {
+        let mut crit = |x: f64| {
+            if eval(c, x).abs() <= zero_tolerance(c, x, coeff_noise) {
+                push(x, RootKind::Even, &mut count);
+            }
+        };
+        odd_roots_into(dc, 0.0, 1.0, t_tol, rest, &mut crit);
+    }
+    if c[m - 1].abs() <= zero_tolerance(c, 1.0, coeff_noise) {
+        push(1.0, RootKind::Even, &mut count);
+    }
+    let list = &mut cand[..count];
+    list.sort_by(|p, q| p.0.total_cmp(&q.0));
+    // Merge clusters.
+    let mut i = 0;
+    while i < list.len() {
+        let mut best = list[i];
+        let mut j = i + 1;
+        while j < list.len() {
+            let prev = list[j - 1].0;
+            let next = list[j];
+            let close = next.0 - prev <= t_tol;
+            let has_even = best.1 == RootKind::Even || next.1 == RootKind::Even;
+            let mid = 0.5 * (prev + next.0);
+            let flat = has_even && eval(c, mid).abs() <= zero_tolerance(c, mid, coeff_noise);
+            if !(close || flat) {
+                break;
+            }
+            let prefer_even = best.1 == RootKind::Odd && next.1 == RootKind::Even;
+            let smaller = best.1 == next.1 && eval(c, next.0).abs() < eval(c, best.0).abs();
+            if prefer_even || smaller {
+                best = next;
+            }
+            j += 1;
+        }
+        sink(best.0, best.1);
+        i = j;
+    }
+}
