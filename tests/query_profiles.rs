@@ -6,35 +6,12 @@
 mod reference;
 
 use nalgebra::{Isometry3, Point2, Translation3, UnitQuaternion, Vector3};
-use reference::{reference, REFERENCE_ERROR};
+use reference::{check_query, reference, ring_profile, Rng, REFERENCE_ERROR};
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use std::sync::Arc;
-
-pub struct Rng(pub u64);
-impl Rng {
-    pub fn f(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    pub fn rotation(&mut self) -> UnitQuaternion<f64> {
-        let v = Vector3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5);
-        UnitQuaternion::from_scaled_axis(v * 7.0)
-    }
-    pub fn unit(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5);
-            if v.norm() > 0.1 && v.norm() < 0.5 {
-                return v.normalize();
-            }
-        }
-    }
-}
 
 fn p(x: f64, y: f64) -> Point2<f64> {
     Point2::new(x, y)
@@ -50,66 +27,13 @@ fn vase() -> Profile {
     Profile::new("vase", pieces).unwrap()
 }
 
-/// Ring: exact rational circle of radius 0.15 around (0.6, 0).
 fn ring() -> Profile {
-    let (c, r) = (p(0.6, 0.0), 0.15);
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let pts = [
-        (1.0, 0.0),
-        (1.0, 1.0),
-        (0.0, 1.0),
-        (-1.0, 1.0),
-        (-1.0, 0.0),
-        (-1.0, -1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (1.0, 0.0),
-    ]
-    .iter()
-    .map(|&(x, y)| p(c.x + r * x, c.y + r * y))
-    .collect();
-    let knots = vec![
-        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
-    ];
-    let weights = vec![1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
-    let circle = NurbsCurve::new(2, knots, pts, Some(weights)).unwrap();
-    Profile::new("ring", vec![circle]).unwrap()
+    ring_profile(0.6, 0.0, 0.15)
 }
 
 fn check(a: &Solid, b: &Solid, label: &str) {
-    let pos = a.relative_pose(b);
-    let r = reference(
-        a.profile.as_deref().unwrap(),
-        b.profile.as_deref().unwrap(),
-        &pos,
-    );
-    let d = distance(a, b, &QueryOptions::default());
-    let e = REFERENCE_ERROR;
-    eprintln!(
-        "{label}: ref {:.3e} nested {} | [{:.6e}, {:.6e}] value {:.6e} overlap {} pairs {} leaves {}",
-        r.distance, r.nested, d.lower, d.upper, d.value, d.overlap, d.stats.node_pairs, d.stats.leaf_tests
-    );
-    assert!(
-        d.lower <= r.distance + e && r.distance <= d.upper + e,
-        "{label}: reference {} (surface {}, nested {}) outside [{}, {}]",
-        r.distance,
-        r.surface_distance,
-        r.nested,
-        d.lower,
-        d.upper
-    );
-    assert!(
-        (d.value - r.distance).abs() <= d.upper - d.lower + e,
-        "{label}: value {} vs reference {}",
-        d.value,
-        r.distance
-    );
-    if d.overlap {
-        assert!(
-            r.distance <= e,
-            "{label}: overlap claimed, reference {}",
-            r.distance
-        );
+    if let Err(e) = check_query(a, b, &QueryOptions::default(), label) {
+        panic!("{e}");
     }
 }
 

@@ -156,7 +156,12 @@ pub fn patch_distance_with(
 
 /// Meridians always scanned for crossings (an intersection loop that winds around a
 /// patch's axis meets every meridian of that patch).
-const FIXED_MERIDIANS: [f64; 4] = [0.0, 1.5707963267948966, 3.141592653589793, 4.71238898038469];
+const FIXED_MERIDIANS: [f64; 4] = [
+    0.0,
+    std::f64::consts::FRAC_PI_2,
+    std::f64::consts::PI,
+    3.0 * std::f64::consts::FRAC_PI_2,
+];
 
 /// Samples along a meridian for the crossing scan.
 const MERIDIAN_SAMPLES: usize = 32;

@@ -19,9 +19,11 @@
 
 #![allow(dead_code)]
 
-use nalgebra::{Isometry3, Point2, Point3, Vector3};
+use nalgebra::{Isometry3, Point2, Point3, UnitQuaternion, Vector3};
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::{Profile, ProfileKind};
+use revdist::query::{distance, Distance, QueryOptions};
+use revdist::solid::Solid;
 use std::f64::consts::TAU;
 
 /// Stated error of the reference (absolute, for models of size about 1): the pattern
@@ -255,4 +257,112 @@ pub fn reference(a: &Profile, b: &Profile, pos_ab: &Isometry3<f64>) -> Reference
 /// Unit vector helper for pose generation.
 pub fn unit(v: Vector3<f64>) -> Vector3<f64> {
     v / v.norm()
+}
+
+/// Small deterministic generator for test poses (no external crates).
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn f(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn rotation(&mut self) -> UnitQuaternion<f64> {
+        let v = Vector3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5);
+        UnitQuaternion::from_scaled_axis(v * 7.0)
+    }
+    pub fn unit(&mut self) -> Vector3<f64> {
+        loop {
+            let v = Vector3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5);
+            if v.norm() > 0.1 && v.norm() < 0.5 {
+                return v.normalize();
+            }
+        }
+    }
+}
+
+/// Exact rational circle profile (a ring) of radius `r` around `(c_rho, c_z)`.
+pub fn ring_profile(c_rho: f64, c_z: f64, r: f64) -> Profile {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let pts = [
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (0.0, 1.0),
+        (-1.0, 1.0),
+        (-1.0, 0.0),
+        (-1.0, -1.0),
+        (0.0, -1.0),
+        (1.0, -1.0),
+        (1.0, 0.0),
+    ]
+    .iter()
+    .map(|&(x, y)| Point2::new(c_rho + r * x, c_z + r * y))
+    .collect();
+    let knots = vec![
+        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+    ];
+    let weights = vec![1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
+    let circle = NurbsCurve::new(2, knots, pts, Some(weights)).unwrap();
+    Profile::new("ring", vec![circle]).unwrap()
+}
+
+/// Closest point of the surface of `prof` (its frame) to `x`.
+pub fn closest_point(prof: &RefProfile, x: &Point3<f64>) -> Point3<f64> {
+    let rho = x.x.hypot(x.y);
+    let m = Point2::new(rho, x.z);
+    let mut best = (f64::INFINITY, m);
+    for &(i, t, _) in &prof.samples {
+        let c = &prof.profile.pieces()[i];
+        let p = c.eval(newton(c, m, t));
+        let d = (p - m).norm();
+        if d < best.0 {
+            best = (d, p);
+        }
+    }
+    let e = if rho > 0.0 {
+        Vector3::new(x.x / rho, x.y / rho, 0.0)
+    } else {
+        Vector3::x()
+    };
+    Point3::new(best.1.x * e.x, best.1.x * e.y, best.1.y)
+}
+
+/// Query `a` against `b` with default options and compare with the reference:
+/// `lower <= reference <= upper` and `|value - reference| <= upper - lower`, both up to
+/// [`REFERENCE_ERROR`]; an overlap claim needs a zero reference.
+pub fn check_query(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+    label: &str,
+) -> Result<(Distance, Reference), String> {
+    let pos = a.relative_pose(b);
+    let r = reference(
+        a.profile.as_deref().unwrap(),
+        b.profile.as_deref().unwrap(),
+        &pos,
+    );
+    let d = distance(a, b, opts);
+    let e = REFERENCE_ERROR;
+    if !(d.lower <= r.distance + e && r.distance <= d.upper + e) {
+        return Err(format!(
+            "{label}: reference {} (surface {}, nested {}) outside [{}, {}]",
+            r.distance, r.surface_distance, r.nested, d.lower, d.upper
+        ));
+    }
+    if (d.value - r.distance).abs() > d.upper - d.lower + e {
+        return Err(format!(
+            "{label}: value {} vs reference {}",
+            d.value, r.distance
+        ));
+    }
+    if d.overlap && r.distance > e {
+        return Err(format!(
+            "{label}: overlap claimed, reference {}",
+            r.distance
+        ));
+    }
+    Ok((d, r))
 }

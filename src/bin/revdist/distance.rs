@@ -225,7 +225,12 @@ pub fn run(args: Args) -> CmdResult {
 }
 
 /// One batch line to a result or a per-line error message.
-fn run_line(line: &str, default_eps: f64, opts: &QueryOptions, cache: &mut SolidCache) -> Result<Output, String> {
+fn run_line(
+    line: &str,
+    default_eps: f64,
+    opts: &QueryOptions,
+    cache: &mut SolidCache,
+) -> Result<Output, String> {
     let req: Request = serde_json::from_str(line).map_err(|e| format!("bad request: {e}"))?;
     let eps = req.eps.unwrap_or(default_eps);
     check_eps(eps)?;
