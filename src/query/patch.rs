@@ -71,29 +71,16 @@ impl ProfileArc {
     /// First point of the piece.
     pub fn start(&self) -> Point2<f64> {
         match *self {
-            ProfileArc::Arc {
-                center,
-                radius,
-                phi_start,
-                ..
-            } => center + radius * Vector2::new(phi_start.cos(), phi_start.sin()),
             ProfileArc::Segment { start, .. } => start,
+            ProfileArc::Arc { .. } => self.point_at(0.0),
         }
     }
 
     /// Last point of the piece.
     pub fn end(&self) -> Point2<f64> {
         match *self {
-            ProfileArc::Arc {
-                center,
-                radius,
-                phi_start,
-                sweep,
-            } => {
-                let phi = phi_start + sweep;
-                center + radius * Vector2::new(phi.cos(), phi.sin())
-            }
             ProfileArc::Segment { end, .. } => end,
+            ProfileArc::Arc { .. } => self.point_at(1.0),
         }
     }
 
@@ -194,6 +181,27 @@ impl ProfileArc {
                 let p = start + t * e;
                 ((x - p).norm(), p)
             }
+        }
+    }
+
+    /// The sub-piece between normalised parameters `s0` and `s1`.
+    pub fn sub_piece(&self, s0: f64, s1: f64) -> Self {
+        match *self {
+            ProfileArc::Arc {
+                center,
+                radius,
+                phi_start,
+                sweep,
+            } => ProfileArc::Arc {
+                center,
+                radius,
+                phi_start: phi_start + s0 * sweep,
+                sweep: (s1 - s0) * sweep,
+            },
+            ProfileArc::Segment { .. } => ProfileArc::Segment {
+                start: self.point_at(s0),
+                end: self.point_at(s1),
+            },
         }
     }
 

@@ -165,6 +165,11 @@ impl QueryTree {
         let mid = leaves.len() / 2;
         let a = self.build(&leaves[..mid]);
         let b = self.build(&leaves[mid..]);
+        self.push_parent(a, b)
+    }
+
+    /// Appends an inner node over `a` and `b` whose disk is the union of theirs.
+    fn push_parent(&mut self, a: u32, b: u32) -> u32 {
         let (na, nb) = (self.nodes[a as usize], self.nodes[b as usize]);
         self.nodes.push(Node {
             bound: na.bound.union(&nb.bound),
@@ -247,15 +252,7 @@ impl QueryTree {
         let mid = roots.len() / 2;
         let a = self.build_upper(&roots[..mid]);
         let b = self.build_upper(&roots[mid..]);
-        let (na, nb) = (self.nodes[a as usize], self.nodes[b as usize]);
-        self.nodes.push(Node {
-            bound: na.bound.union(&nb.bound),
-            eps: na.eps.max(nb.eps),
-            children: [a, b],
-            patch_start: 0,
-            patch_end: 0,
-        });
-        self.nodes.len() as u32 - 1
+        self.push_parent(a, b)
     }
 
     /// Exact tree (eps = 0) of given profile pieces, each split into leaves of sweep at most
@@ -277,23 +274,7 @@ impl QueryTree {
             } as usize;
             for i in 0..n {
                 let (s0, s1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
-                let sub = match *p {
-                    ProfileArc::Arc {
-                        center,
-                        radius,
-                        phi_start,
-                        sweep,
-                    } => ProfileArc::Arc {
-                        center,
-                        radius,
-                        phi_start: phi_start + s0 * sweep,
-                        sweep: (s1 - s0) * sweep,
-                    },
-                    ProfileArc::Segment { .. } => ProfileArc::Segment {
-                        start: p.point_at(s0),
-                        end: p.point_at(s1),
-                    },
-                };
+                let sub = p.sub_piece(s0, s1);
                 leaves.push(Leaf::new(vec![sub], 0.0));
             }
         }
