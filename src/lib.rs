@@ -12,5 +12,6 @@
 
 pub mod nurbs;
 pub mod poly;
+pub mod circle;
 pub mod profile;
 pub mod profile_file;
