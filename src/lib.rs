@@ -10,8 +10,8 @@
 //! Data flows one way: [`nurbs`] curves form a [`profile`]; built-in profiles live in
 //! [`models`].
 
+pub mod circle;
 pub mod nurbs;
 pub mod poly;
-pub mod circle;
 pub mod profile;
 pub mod profile_file;

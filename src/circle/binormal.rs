@@ -72,7 +72,10 @@ pub(crate) fn theta_roots(lp: &LocalPair, range: Option<&AngleInterval>) -> Opti
                 } else {
                     let a0 = (r.start - theta0 + PI).rem_euclid(TAU) - PI;
                     for shift in [0.0, -TAU] {
-                        let (lo, hi) = ((a0 + shift).max(-FRAC_PI_2), (a0 + r.len + shift).min(FRAC_PI_2));
+                        let (lo, hi) = (
+                            (a0 + shift).max(-FRAC_PI_2),
+                            (a0 + r.len + shift).min(FRAC_PI_2),
+                        );
                         if lo <= hi {
                             pieces.try_push((s_of(lo), s_of(hi)));
                         }
@@ -293,7 +296,8 @@ pub fn binormals(
     let mut out = Binormals::default();
     let Some(lp) = LocalPair::new(a, b) else {
         // Both are the same point.
-        out.items.try_push(to_binormal(a, b, &LocalPair::unit(), 0.0, 0.0, 0.0));
+        out.items
+            .try_push(to_binormal(a, b, &LocalPair::unit(), 0.0, 0.0, 0.0));
         out.multiplicity = Multiplicity::ContinuumOnBoth;
         return out;
     };
@@ -306,18 +310,19 @@ pub fn binormals(
             let ok_a = range_a.is_none_or(|r| r.contains(bn.phi, 1e-9));
             let ok_b = range_b.is_none_or(|r| r.contains(bn.theta, 1e-9));
             if ok_a && ok_b {
-                out.items.try_push(to_binormal(a, b, &lp, bn.phi, bn.theta, bn.dist));
+                out.items
+                    .try_push(to_binormal(a, b, &lp, bn.phi, bn.theta, bn.dist));
             }
         }
         out.multiplicity = sol.multiplicity;
         return out;
     }
-    // Parametrise the circle with the shorter range (ties: the larger radius).
+    // Parametrise the circle with the shorter range (ties: the smaller radius).
     let len = |r: &Option<AngleInterval>| r.map_or(TAU, |r| r.len);
     let b_first = match len(&range_b).partial_cmp(&len(&range_a)) {
         Some(std::cmp::Ordering::Less) => true,
         Some(std::cmp::Ordering::Greater) => false,
-        _ => b.radius >= a.radius,
+        _ => b.radius <= a.radius,
     };
     for attempt in 0..2 {
         let param_b = b_first == (attempt == 0);
@@ -326,11 +331,14 @@ pub fn binormals(
         } else {
             (b, a, range_b.as_ref(), range_a.as_ref())
         };
-        let Some(lpx) = LocalPair::new(x, y) else { continue };
+        let Some(lpx) = LocalPair::new(x, y) else {
+            continue;
+        };
         if let Some((list, cont_on_x)) = local_binormals(&lpx, rx, ry) {
             for &(p, t, d) in list.iter() {
                 let bn = to_binormal(x, y, &lpx, p, t, d);
-                out.items.try_push(if param_b { bn } else { swap_binormal(bn) });
+                out.items
+                    .try_push(if param_b { bn } else { swap_binormal(bn) });
             }
             if cont_on_x {
                 // A point of y on x's axis, at x's centre, tangent along x's axis.
@@ -383,7 +391,11 @@ fn point_binormals(
         return out;
     }
     let swapped = a.radius != 0.0;
-    let (pt, circ, range) = if swapped { (b, a, range_a) } else { (a, b, range_b) };
+    let (pt, circ, range) = if swapped {
+        (b, a, range_a)
+    } else {
+        (a, b, range_b)
+    };
     let pc = point_circle_distance(&pt.center, circ);
     let push = |theta: f64, out: &mut Binormals| {
         if range.is_some_and(|r| !r.contains(theta, 1e-9)) {
@@ -397,7 +409,8 @@ fn point_binormals(
             point_b: q,
             distance: (q - pt.center).norm(),
         };
-        out.items.try_push(if swapped { swap_binormal(bn) } else { bn });
+        out.items
+            .try_push(if swapped { swap_binormal(bn) } else { bn });
     };
     push(pc.angle, &mut out);
     if pc.on_axis {
@@ -428,11 +441,11 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
     };
     if a.radius == 0.0 || b.radius == 0.0 {
         let bn = point_binormals(a, b, None, None);
-        let best = bn
-            .items
-            .iter()
-            .copied()
-            .fold(bn.items[0], |m, x| if x.distance < m.distance { x } else { m });
+        let best =
+            bn.items.iter().copied().fold(
+                bn.items[0],
+                |m, x| if x.distance < m.distance { x } else { m },
+            );
         return MinDistance {
             distance: best.distance,
             angle_a: best.angle_a,
@@ -456,11 +469,15 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
             multiplicity: sol.multiplicity,
         };
     }
-    let b_first = b.radius >= a.radius;
+    // Parametrise the smaller circle: its binormal polynomial stays well scaled for extreme
+    // radius ratios (the larger circle's terms dominate P otherwise).
+    let b_first = b.radius <= a.radius;
     for attempt in 0..2 {
         let param_b = b_first == (attempt == 0);
         let (x, y) = if param_b { (a, b) } else { (b, a) };
-        let Some(lpx) = LocalPair::new(x, y) else { continue };
+        let Some(lpx) = LocalPair::new(x, y) else {
+            continue;
+        };
         if let Some(m) = local_min(&lpx) {
             let (px, py) = (m.0, m.1);
             let mut res = MinDistance {

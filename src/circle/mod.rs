@@ -41,7 +41,9 @@ pub enum CircleError {
     BadCenter,
     #[error("circle u-axis must be finite and not parallel to the normal")]
     BadUAxis,
-    #[error("angle interval must be finite with length in [0, 2 pi], got start {start}, length {len}")]
+    #[error(
+        "angle interval must be finite with length in [0, 2 pi], got start {start}, length {len}"
+    )]
     BadInterval { start: f64, len: f64 },
 }
 
@@ -59,7 +61,11 @@ pub struct Circle3 {
 impl Circle3 {
     /// A circle with a canonical angle origin (the coordinate axis least aligned with the
     /// normal, projected into the plane).
-    pub fn new(center: Point3<f64>, normal: Vector3<f64>, radius: f64) -> Result<Self, CircleError> {
+    pub fn new(
+        center: Point3<f64>,
+        normal: Vector3<f64>,
+        radius: f64,
+    ) -> Result<Self, CircleError> {
         let n = check_normal(normal)?;
         let (ax, ay, az) = (n.x.abs(), n.y.abs(), n.z.abs());
         let e = if ax <= ay && ax <= az {
@@ -168,8 +174,7 @@ pub struct AngleInterval {
 impl AngleInterval {
     /// Validated interval.
     pub fn new(start: f64, len: f64) -> Result<Self, CircleError> {
-        if !(start.is_finite() && len.is_finite() && (0.0..=std::f64::consts::TAU).contains(&len))
-        {
+        if !(start.is_finite() && len.is_finite() && (0.0..=std::f64::consts::TAU).contains(&len)) {
             return Err(CircleError::BadInterval { start, len });
         }
         Ok(Self { start, len })

@@ -75,10 +75,11 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
     let n_closest;
     if delta >= ra + rb || delta <= (ra - rb).abs() {
         // Separated or nested projections: the closest pair is on the centre line.
-        let best = binormals
-            .iter()
-            .copied()
-            .fold(binormals[0], |m, b| if b.dist < m.dist { b } else { m });
+        let best =
+            binormals
+                .iter()
+                .copied()
+                .fold(binormals[0], |m, b| if b.dist < m.dist { b } else { m });
         closest[0] = best;
         n_closest = 1;
     } else {

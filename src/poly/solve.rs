@@ -169,9 +169,18 @@ pub fn odd_roots_into(
             // A root exactly on the split point b (de Casteljau made it an exact zero):
             // the right neighbour starts with the same zero, so only this piece reports it,
             // when the sign changes across b.
-            let left = piece.iter().rev().find(|&&x| x != 0.0).copied().unwrap_or(0.0);
+            let left = piece
+                .iter()
+                .rev()
+                .find(|&&x| x != 0.0)
+                .copied()
+                .unwrap_or(0.0);
             restrict_into(c, b, (2.0 * b - a).min(hi), dpiece_full(rest, m));
-            let right = rest[..m].iter().find(|&&x| x != 0.0).copied().unwrap_or(0.0);
+            let right = rest[..m]
+                .iter()
+                .find(|&&x| x != 0.0)
+                .copied()
+                .unwrap_or(0.0);
             restrict_into(c, a, b, piece);
             if left * right < 0.0 {
                 sink(b);
