@@ -10,8 +10,11 @@
 //! Data flows one way: [`nurbs`] curves form a [`profile`]; built-in profiles live in
 //! [`models`].
 
+pub mod biarc;
 pub mod circle;
+pub mod models;
 pub mod nurbs;
 pub mod poly;
 pub mod profile;
 pub mod profile_file;
+pub mod svg;

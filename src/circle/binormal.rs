@@ -586,7 +586,19 @@ fn sampled_min(lp: &LocalPair) -> (f64, f64, f64, Multiplicity) {
         }
     }
     let h = TAU / N as f64;
-    let (mut lo, mut hi) = (best_k as f64 * h - h, best_k as f64 * h + h);
+    let t = golden_min(f, best_k as f64 * h - h, best_k as f64 * h + h);
+    let (d, phi) = lp.dist_b_to_a(t);
+    let mult = if worst - d <= TIE_REL_TOL {
+        Multiplicity::ContinuumOnBoth
+    } else {
+        Multiplicity::Finite
+    };
+    (phi, t, d.min(best), mult)
+}
+
+/// Golden-section search for a minimum of a unimodal `f` on [lo, hi] (80 steps shrink the
+/// bracket by 0.618^80 ~ 1e-17, i.e. to adjacent doubles for brackets of size ~1).
+pub fn golden_min(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     for _ in 0..80 {
         let (m1, m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
@@ -596,12 +608,5 @@ fn sampled_min(lp: &LocalPair) -> (f64, f64, f64, Multiplicity) {
             lo = m1;
         }
     }
-    let t = 0.5 * (lo + hi);
-    let (d, phi) = lp.dist_b_to_a(t);
-    let mult = if worst - d <= TIE_REL_TOL {
-        Multiplicity::ContinuumOnBoth
-    } else {
-        Multiplicity::Finite
-    };
-    (phi, t, d.min(best), mult)
+    0.5 * (lo + hi)
 }

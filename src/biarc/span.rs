@@ -1,0 +1,86 @@
+//! Fast evaluation of one rational Bezier span (homogeneous Bernstein coefficients) with its
+//! first derivative: the inner loop of tree building.
+
+use nalgebra::{Point2, Vector2};
+
+use super::fit::PlanarCurve;
+
+/// Largest supported span degree (fixed-size de Casteljau buffer; profile curves are cubic or
+/// quadratic, the NURBS module allows any degree).
+pub const MAX_SPAN_DEGREE: usize = 15;
+
+/// A rational Bezier span on the local parameter `u` in [0, 1], borrowed from homogeneous
+/// coefficients `(w rho, w z, w)`.
+#[derive(Debug, Clone, Copy)]
+pub struct SpanCurve<'a> {
+    /// Homogeneous control points, `degree + 1` of them (at most `MAX_SPAN_DEGREE + 1`).
+    pub homogeneous: &'a [[f64; 3]],
+}
+
+impl PlanarCurve for SpanCurve<'_> {
+    /// Point and derivative with respect to the local parameter `u`, by de Casteljau down to
+    /// the last two homogeneous points `Q0, Q1`: `P = lerp(Q0, Q1, u)`, `P' = n (Q1 - Q0)`.
+    fn point_and_derivative(&self, u: f64) -> (Point2<f64>, Vector2<f64>) {
+        let h = self.homogeneous;
+        let n = h.len() - 1;
+        if n == 0 {
+            return (
+                Point2::new(h[0][0] / h[0][2], h[0][1] / h[0][2]),
+                Vector2::zeros(),
+            );
+        }
+        let mut q = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
+        q[..=n].copy_from_slice(h);
+        let v = 1.0 - u;
+        for r in 1..n {
+            for i in 0..=n - r {
+                let next = q[i + 1];
+                for (qc, nc) in q[i].iter_mut().zip(next) {
+                    *qc = v * *qc + u * nc;
+                }
+            }
+        }
+        let p = [
+            v * q[0][0] + u * q[1][0],
+            v * q[0][1] + u * q[1][1],
+            v * q[0][2] + u * q[1][2],
+        ];
+        let nf = n as f64;
+        let dp = [
+            nf * (q[1][0] - q[0][0]),
+            nf * (q[1][1] - q[0][1]),
+            nf * (q[1][2] - q[0][2]),
+        ];
+        let w = p[2];
+        let point = Point2::new(p[0] / w, p[1] / w);
+        let d = Vector2::new(
+            (dp[0] * w - p[0] * dp[2]) / (w * w),
+            (dp[1] * w - p[1] * dp[2]) / (w * w),
+        );
+        (point, d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quarter_circle_rational_quadratic() {
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let h = [[1.0, 0.0, 1.0], [s, s, s], [0.0, 1.0, 1.0]];
+        let c = SpanCurve { homogeneous: &h };
+        for i in 0..=10 {
+            let u = i as f64 / 10.0;
+            let (p, d) = c.point_and_derivative(u);
+            assert!((p.coords.norm() - 1.0).abs() < 1e-15);
+            assert!(p.coords.dot(&d).abs() < 1e-14);
+            // finite-difference check of the derivative
+            let e = 1e-6;
+            let fd = (c.point_and_derivative((u + e).min(1.0)).0
+                - c.point_and_derivative((u - e).max(0.0)).0)
+                / ((u + e).min(1.0) - (u - e).max(0.0));
+            assert!((fd - d).norm() < 1e-5, "u {u}: {fd:?} vs {d:?}");
+        }
+    }
+}

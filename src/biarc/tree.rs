@@ -1,0 +1,630 @@
+//! The biarc tree of a profile (Son et al. 2020, section 4.1, Algorithm 1): an AABB hierarchy
+//! over the profile's spirals, and under each spiral a binary tree of biarcs split at the mid
+//! parameter until the bilens bound is at most `eps`.
+//!
+//! Storage is flat: every node is a `Copy` struct in one `Vec`, children are `u32` indices
+//! (the two children of a node are adjacent), and [`BiarcTree::rebuild`] refills the same
+//! vectors, so rebuilding a deforming profile allocates nothing once capacities have grown.
+//!
+//! **What a node guarantees** (all in the (rho, z) half-plane, all two-sided where stated):
+//! - [`BiarcNode::eps`]: the two-sided Hausdorff distance between the node's curve piece and its
+//!   biarc is at most `eps` (bilens bound, [`super::bound`]).
+//! - [`BiarcNode::bounding_disk`]: the curve piece lies inside the disk.
+//! - [`BiarcNode::chord`] with [`BiarcNode::chord_distance`]: every point of the curve piece is
+//!   within `chord_distance` of the chord segment (the paper's "line segment that best
+//!   approximates the biarc", revolved into a truncated cone).
+//! - [`SpiralInfo::aabb`] and [`UpperNode::aabb`]: boxes containing the curve.
+
+use nalgebra::{Point2, Vector2};
+
+use super::arc::{cross, Arc};
+use super::fit::{fit_biarc, CurveSample, FittedBiarc};
+use super::span::{SpanCurve, MAX_SPAN_DEGREE};
+use super::spiral::spiral_splits;
+use super::BiarcError;
+use crate::nurbs::Aabb2;
+use crate::profile::Profile;
+
+/// Index of a node in [`BiarcTree::nodes`] or [`BiarcTree::upper_nodes`].
+pub type NodeId = u32;
+
+/// Sentinel for "no children".
+const NO_CHILD: u32 = u32::MAX;
+
+/// Depth cap of a spiral's biarc tree. Each level shrinks the bound ~8x, so 60 levels would take
+/// any bound far below rounding; reaching it means `eps` is unreachable in floating point.
+pub const MAX_DEPTH: u32 = 60;
+
+/// Smallest accepted `eps`, relative to the profile size (bounding-box diagonal): below it the
+/// floating-point slack of the bounds (~1e-14 of the coordinates) would dominate.
+pub const MIN_EPS_REL: f64 = 1e-12;
+
+/// Errors building a biarc tree.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TreeError {
+    /// `eps` is not a positive finite number.
+    #[error("eps must be positive and finite, got {0}")]
+    InvalidEps(f64),
+    /// `eps` is below what floating point can certify for this profile.
+    #[error(
+        "eps = {eps:e} is below {min:e} (1e-12 of the profile size), which rounding cannot certify"
+    )]
+    EpsTooSmall {
+        /// Requested bound.
+        eps: f64,
+        /// Smallest accepted bound for this profile.
+        min: f64,
+    },
+    /// A span of a piece has a degree above [`MAX_SPAN_DEGREE`].
+    #[error("piece {piece} has degree {degree}, above the supported {max}")]
+    DegreeTooHigh {
+        /// Piece index.
+        piece: usize,
+        /// Its degree.
+        degree: usize,
+        /// The supported maximum.
+        max: usize,
+    },
+    /// Fitting a biarc failed on a spiral of a piece.
+    #[error("piece {piece}: {source}")]
+    Fit {
+        /// Piece index.
+        piece: usize,
+        /// The fitting error.
+        source: BiarcError,
+    },
+    /// Subdivision reached [`MAX_DEPTH`] without meeting `eps`.
+    #[error("piece {piece}: bound {reached:e} still above eps after {MAX_DEPTH} subdivisions")]
+    BoundNotReached {
+        /// Piece index.
+        piece: usize,
+        /// The bound of the deepest node.
+        reached: f64,
+    },
+}
+
+/// A disk in the (rho, z) plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Disk {
+    /// Centre.
+    pub center: Point2<f64>,
+    /// Radius.
+    pub radius: f64,
+}
+
+/// One node of a spiral's biarc tree.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BiarcNode {
+    arcs: [Arc; 2],
+    eps: f64,
+    disk: Disk,
+    chord_distance: f64,
+    t0: f64,
+    t1: f64,
+    spiral: u32,
+    first_child: u32,
+    depth: u32,
+}
+
+impl BiarcNode {
+    /// The biarc: `arcs()[0].start` is the curve point at `param_range().0`, `arcs()[1].end`
+    /// the one at `param_range().1`; the arcs meet G1 at the joint (a curve point).
+    pub fn arcs(&self) -> &[Arc; 2] {
+        &self.arcs
+    }
+    /// Guaranteed two-sided Hausdorff bound between the node's curve piece and its biarc.
+    pub fn eps(&self) -> f64 {
+        self.eps
+    }
+    /// A disk that contains the node's curve piece (and its biarc).
+    pub fn bounding_disk(&self) -> Disk {
+        self.disk
+    }
+    /// The chord segment (start and end point of the piece).
+    pub fn chord(&self) -> (Point2<f64>, Point2<f64>) {
+        (self.arcs[0].start, self.arcs[1].end)
+    }
+    /// Every point of the curve piece (and of the biarc) is within this distance of
+    /// [`BiarcNode::chord`].
+    pub fn chord_distance(&self) -> f64 {
+        self.chord_distance
+    }
+    /// Parameter interval of the piece in its profile piece's (NURBS) parameter.
+    pub fn param_range(&self) -> (f64, f64) {
+        (self.t0, self.t1)
+    }
+    /// Index of the spiral ([`BiarcTree::spirals`]) this node belongs to.
+    pub fn spiral(&self) -> usize {
+        self.spiral as usize
+    }
+    /// Depth below the spiral's root (root = 0).
+    pub fn depth(&self) -> u32 {
+        self.depth
+    }
+    /// True for a leaf (its bound is <= the tree's eps).
+    pub fn is_leaf(&self) -> bool {
+        self.first_child == NO_CHILD
+    }
+    /// The two children (first half, second half of the parameter range), or `None` for a leaf.
+    pub fn children(&self) -> Option<[NodeId; 2]> {
+        (!self.is_leaf()).then(|| [self.first_child, self.first_child + 1])
+    }
+}
+
+/// One spiral: a maximal piece of the profile that is monotone in rho and z, of one convexity
+/// and curvature-monotone.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpiralInfo {
+    /// Index of the profile piece.
+    pub piece: usize,
+    /// Parameter interval in the piece.
+    pub param_range: (f64, f64),
+    /// Root of the spiral's biarc tree in [`BiarcTree::nodes`].
+    pub root: NodeId,
+    /// Axis-aligned box containing the spiral's curve.
+    pub aabb: Aabb2,
+    span: u32,
+    u_range: (f64, f64),
+}
+
+/// A node of the upper AABB hierarchy over spirals.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UpperNode {
+    /// Box containing every spiral below.
+    pub aabb: Aabb2,
+    /// Children in [`BiarcTree::upper_nodes`], or `None` when the node holds one spiral.
+    pub children: Option<[NodeId; 2]>,
+    /// The spiral of a leaf ([`BiarcTree::spirals`]).
+    pub spiral: Option<usize>,
+}
+
+/// Node counts, depth and memory of a tree.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct TreeStats {
+    /// Number of spirals.
+    pub spirals: usize,
+    /// Biarc-tree nodes (all spirals).
+    pub nodes: usize,
+    /// Biarc-tree leaves.
+    pub leaves: usize,
+    /// Upper-level AABB nodes.
+    pub upper_nodes: usize,
+    /// Largest biarc depth below a spiral root, plus the upper-level depth.
+    pub depth: usize,
+    /// Bytes of the flat arrays a query touches (nodes, spirals, upper level).
+    pub bytes: usize,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct SpanRecord {
+    piece: u32,
+    t0: f64,
+    t1: f64,
+    offset: u32,
+    len: u32,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Job {
+    node: u32,
+    a: CurveSample,
+    b: CurveSample,
+    depth: u32,
+}
+
+/// The biarc tree of a profile (see the module doc).
+#[derive(Debug, Clone, Default)]
+pub struct BiarcTree {
+    eps: f64,
+    nodes: Vec<BiarcNode>,
+    spirals: Vec<SpiralInfo>,
+    upper: Vec<UpperNode>,
+    spans: Vec<SpanRecord>,
+    coeffs: Vec<[f64; 3]>,
+    stack: Vec<Job>,
+    max_depth: u32,
+}
+
+impl BiarcTree {
+    /// Builds the tree of `profile` with leaf bound `eps`.
+    pub fn build(profile: &Profile, eps: f64) -> Result<BiarcTree, TreeError> {
+        let mut tree = BiarcTree::default();
+        tree.rebuild(profile, eps)?;
+        Ok(tree)
+    }
+
+    /// Rebuilds in place for a new (e.g. deformed) profile, reusing all allocations.
+    pub fn rebuild(&mut self, profile: &Profile, eps: f64) -> Result<(), TreeError> {
+        if !(eps > 0.0 && eps.is_finite()) {
+            return Err(TreeError::InvalidEps(eps));
+        }
+        let size = profile.bounding_box().diagonal();
+        if eps < MIN_EPS_REL * size {
+            return Err(TreeError::EpsTooSmall {
+                eps,
+                min: MIN_EPS_REL * size,
+            });
+        }
+        self.eps = eps;
+        self.nodes.clear();
+        self.spirals.clear();
+        self.upper.clear();
+        self.spans.clear();
+        self.coeffs.clear();
+        self.max_depth = 0;
+        self.load_spans(profile)?;
+        self.segment();
+        for s in 0..self.spirals.len() {
+            self.build_spiral(s)?;
+        }
+        self.build_upper();
+        Ok(())
+    }
+
+    fn load_spans(&mut self, profile: &Profile) -> Result<(), TreeError> {
+        for (piece, curve) in profile.pieces().iter().enumerate() {
+            if curve.degree() > MAX_SPAN_DEGREE {
+                return Err(TreeError::DegreeTooHigh {
+                    piece,
+                    degree: curve.degree(),
+                    max: MAX_SPAN_DEGREE,
+                });
+            }
+            for span in curve.bezier_spans() {
+                let offset = self.coeffs.len() as u32;
+                self.coeffs.extend_from_slice(&span.homogeneous);
+                self.spans.push(SpanRecord {
+                    piece: piece as u32,
+                    t0: span.t0,
+                    t1: span.t1,
+                    offset,
+                    len: span.homogeneous.len() as u32,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn span_curve(&self, span: usize) -> SpanCurve<'_> {
+        let r = &self.spans[span];
+        SpanCurve {
+            homogeneous: &self.coeffs[r.offset as usize..(r.offset + r.len) as usize],
+        }
+    }
+
+    fn segment(&mut self) {
+        for si in 0..self.spans.len() {
+            let r = self.spans[si];
+            let curve = self.span_curve(si);
+            // A span whose control points all coincide is a point: skip it.
+            let p0 = curve.homogeneous[0];
+            let first = Point2::new(p0[0] / p0[2], p0[1] / p0[2]);
+            if curve
+                .homogeneous
+                .iter()
+                .all(|p| Point2::new(p[0] / p[2], p[1] / p[2]) == first)
+            {
+                continue;
+            }
+            let splits = spiral_splits(curve.homogeneous);
+            let mut u0 = 0.0;
+            for u1 in splits.iter().map(|s| s.0).chain(std::iter::once(1.0)) {
+                let t = |u: f64| r.t0 + (r.t1 - r.t0) * u;
+                self.spirals.push(SpiralInfo {
+                    piece: r.piece as usize,
+                    param_range: (t(u0), t(u1)),
+                    root: 0,
+                    aabb: Aabb2 {
+                        min: first,
+                        max: first,
+                    },
+                    span: si as u32,
+                    u_range: (u0, u1),
+                });
+                u0 = u1;
+            }
+        }
+    }
+
+    fn build_spiral(&mut self, s: usize) -> Result<(), TreeError> {
+        let info = self.spirals[s];
+        let span = self.spans[info.span as usize];
+        let piece = span.piece as usize;
+        let root = self.nodes.len() as u32;
+        self.spirals[s].root = root;
+        self.nodes.push(placeholder());
+        let (a, b) = {
+            let c = self.span_curve(info.span as usize);
+            (
+                CurveSample::at(&c, info.u_range.0),
+                CurveSample::at(&c, info.u_range.1),
+            )
+        };
+        self.stack.clear();
+        self.stack.push(Job {
+            node: root,
+            a,
+            b,
+            depth: 0,
+        });
+        let to_t = |u: f64| span.t0 + (span.t1 - span.t0) * u;
+        while let Some(job) = self.stack.pop() {
+            let curve = SpanCurve {
+                homogeneous: &self.coeffs[span.offset as usize..(span.offset + span.len) as usize],
+            };
+            let fit = fit_biarc(&curve, &job.a, &job.b)
+                .map_err(|source| TreeError::Fit { piece, source })?;
+            let leaf = fit.eps <= self.eps;
+            if !leaf && job.depth >= MAX_DEPTH {
+                return Err(TreeError::BoundNotReached {
+                    piece,
+                    reached: fit.eps,
+                });
+            }
+            let mut node = make_node(&fit, s as u32, job.depth);
+            node.t0 = to_t(job.a.t);
+            node.t1 = to_t(job.b.t);
+            self.max_depth = self.max_depth.max(job.depth);
+            if !leaf {
+                let first = self.nodes.len() as u32;
+                node.first_child = first;
+                self.nodes.push(placeholder());
+                self.nodes.push(placeholder());
+                let mid = CurveSample::at(&curve, 0.5 * (job.a.t + job.b.t));
+                self.stack.push(Job {
+                    node: first + 1,
+                    a: mid,
+                    b: job.b,
+                    depth: job.depth + 1,
+                });
+                self.stack.push(Job {
+                    node: first,
+                    a: job.a,
+                    b: mid,
+                    depth: job.depth + 1,
+                });
+            }
+            self.nodes[job.node as usize] = node;
+        }
+        let r = self.nodes[root as usize];
+        let mut aabb = arc_aabb(&r.arcs[0]).union(arc_aabb(&r.arcs[1]));
+        aabb.min -= Vector2::new(r.eps, r.eps);
+        aabb.max += Vector2::new(r.eps, r.eps);
+        self.spirals[s].aabb = aabb;
+        Ok(())
+    }
+
+    /// Upper AABB hierarchy: spirals in profile order, halved recursively (consecutive spirals
+    /// are spatial neighbours along the curve).
+    fn build_upper(&mut self) {
+        if self.spirals.is_empty() {
+            return;
+        }
+        self.upper.push(UpperNode {
+            aabb: self.spirals[0].aabb,
+            children: None,
+            spiral: None,
+        });
+        let mut work = vec![(0u32, 0usize, self.spirals.len())];
+        while let Some((node, lo, hi)) = work.pop() {
+            let aabb = self.spirals[lo..hi]
+                .iter()
+                .map(|s| s.aabb)
+                .reduce(Aabb2::union)
+                .unwrap_or(self.spirals[lo].aabb);
+            let mut n = UpperNode {
+                aabb,
+                children: None,
+                spiral: None,
+            };
+            if hi - lo == 1 {
+                n.spiral = Some(lo);
+            } else {
+                let first = self.upper.len() as u32;
+                let mid = (lo + hi) / 2;
+                for _ in 0..2 {
+                    self.upper.push(n);
+                }
+                n.children = Some([first, first + 1]);
+                work.push((first, lo, mid));
+                work.push((first + 1, mid, hi));
+            }
+            self.upper[node as usize] = n;
+        }
+    }
+
+    /// The leaf bound the tree was built with.
+    pub fn eps(&self) -> f64 {
+        self.eps
+    }
+    /// All biarc nodes (flat; index with [`NodeId`]).
+    pub fn nodes(&self) -> &[BiarcNode] {
+        &self.nodes
+    }
+    /// One biarc node.
+    pub fn node(&self, id: NodeId) -> &BiarcNode {
+        &self.nodes[id as usize]
+    }
+    /// The spirals, in profile order.
+    pub fn spirals(&self) -> &[SpiralInfo] {
+        &self.spirals
+    }
+    /// Root nodes of the spirals' biarc trees, in profile order.
+    pub fn roots(&self) -> impl Iterator<Item = NodeId> + '_ {
+        self.spirals.iter().map(|s| s.root)
+    }
+    /// The upper AABB hierarchy over spirals; its root is index 0 (empty for an empty tree).
+    pub fn upper_nodes(&self) -> &[UpperNode] {
+        &self.upper
+    }
+    /// Root of the upper hierarchy, if any.
+    pub fn upper_root(&self) -> Option<NodeId> {
+        (!self.upper.is_empty()).then_some(0)
+    }
+    /// The leaves in profile order: a G1 arc spline within `eps` of the profile.
+    pub fn leaves(&self) -> impl Iterator<Item = &BiarcNode> + '_ {
+        LeafIter {
+            tree: self,
+            spiral: 0,
+            stack: Vec::new(),
+        }
+    }
+    /// Node counts, depth and bytes.
+    pub fn stats(&self) -> TreeStats {
+        let upper_depth = (self.spirals.len().max(1) as f64).log2().ceil() as usize;
+        TreeStats {
+            spirals: self.spirals.len(),
+            nodes: self.nodes.len(),
+            leaves: self.nodes.iter().filter(|n| n.is_leaf()).count(),
+            upper_nodes: self.upper.len(),
+            depth: self.max_depth as usize + 1 + upper_depth,
+            bytes: std::mem::size_of_val(self.nodes.as_slice())
+                + std::mem::size_of_val(self.spirals.as_slice())
+                + std::mem::size_of_val(self.upper.as_slice()),
+        }
+    }
+}
+
+struct LeafIter<'a> {
+    tree: &'a BiarcTree,
+    spiral: usize,
+    stack: Vec<NodeId>,
+}
+
+impl<'a> Iterator for LeafIter<'a> {
+    type Item = &'a BiarcNode;
+    fn next(&mut self) -> Option<&'a BiarcNode> {
+        loop {
+            if let Some(id) = self.stack.pop() {
+                let n = self.tree.node(id);
+                match n.children() {
+                    Some([a, b]) => {
+                        self.stack.push(b);
+                        self.stack.push(a);
+                    }
+                    None => return Some(n),
+                }
+            } else if self.spiral < self.tree.spirals.len() {
+                self.stack.push(self.tree.spirals[self.spiral].root);
+                self.spiral += 1;
+            } else {
+                return None;
+            }
+        }
+    }
+}
+
+fn placeholder() -> BiarcNode {
+    let p = Point2::origin();
+    let arc = Arc {
+        start: p,
+        end: p,
+        start_tangent: Vector2::x(),
+        curvature: 0.0,
+        sweep: 0.0,
+        length: 0.0,
+    };
+    BiarcNode {
+        arcs: [arc; 2],
+        eps: f64::INFINITY,
+        disk: Disk {
+            center: p,
+            radius: f64::INFINITY,
+        },
+        chord_distance: f64::INFINITY,
+        t0: 0.0,
+        t1: 0.0,
+        spiral: 0,
+        first_child: NO_CHILD,
+        depth: 0,
+    }
+}
+
+/// Node data from a fit: disk around the chord midpoint and the chord-distance bound.
+fn make_node(fit: &FittedBiarc, spiral: u32, depth: u32) -> BiarcNode {
+    let [a0, a1] = fit.arcs;
+    let (a, b) = (a0.start, a1.end);
+    let m = nalgebra::center(&a, &b);
+    let radius = max_distance(&a0, m).max(max_distance(&a1, m)) + fit.eps;
+    // Every point X of arc i is within sagitta_i of the chord of arc i, whose points are within
+    // max(dist(start_i), dist(end_i)) of segment AB (distance to a convex set is convex).
+    let j = a0.end;
+    let chord_distance = a0.sagitta().max(a1.sagitta()) + segment_distance(j, a, b) + fit.eps;
+    let mut n = placeholder();
+    n.arcs = fit.arcs;
+    n.eps = fit.eps;
+    n.disk = Disk { center: m, radius };
+    n.chord_distance = chord_distance;
+    n.spiral = spiral;
+    n.depth = depth;
+    n
+}
+
+fn segment_distance(p: Point2<f64>, a: Point2<f64>, b: Point2<f64>) -> f64 {
+    let d = b - a;
+    let l2 = d.norm_squared();
+    if l2 == 0.0 {
+        return (p - a).norm();
+    }
+    let u = ((p - a).dot(&d) / l2).clamp(0.0, 1.0);
+    (p - (a + d * u)).norm()
+}
+
+/// Arc length from `arc.start` to the point where the tangent turns to direction `dir`, if
+/// that happens within the arc.
+fn reach(arc: &Arc, dir: Vector2<f64>) -> Option<f64> {
+    if arc.sweep == 0.0 {
+        return None;
+    }
+    let t = arc.start_tangent;
+    let mut d = cross(t, dir).atan2(t.dot(&dir));
+    if arc.sweep < 0.0 {
+        d = -d;
+    }
+    if d < 0.0 {
+        d += 2.0 * std::f64::consts::PI;
+    }
+    (d <= arc.sweep.abs()).then(|| arc.length * d / arc.sweep.abs())
+}
+
+/// Largest distance from `p` to points of the arc (end points, or the farthest circle point
+/// when the arc contains it). The farthest point has its tangent perpendicular to `X - p`,
+/// i.e. its outward radius along `c - p` reversed; computed without the (possibly huge) centre.
+fn max_distance(arc: &Arc, p: Point2<f64>) -> f64 {
+    let ends = (arc.start - p).norm().max((arc.end - p).norm());
+    if arc.is_segment() {
+        return ends;
+    }
+    let k = arc.curvature;
+    let n = Vector2::new(-arc.start_tangent.y, arc.start_tangent.x);
+    // k (c - p) = k (start - p) + n; the far point lies at direction -(c - p) from c... i.e.
+    // the outward normal there is (c - p)/|c - p| reversed: far point = c + r (c - p)/|c - p|.
+    let kc = (arc.start - p) * k + n;
+    let len = kc.norm();
+    if len == 0.0 {
+        return ends; // p is the centre: every point is at distance r, the ends give it
+    }
+    // outward unit normal u at the far point = (c - p)/|c - p| = kc/len * sign(k); the tangent
+    // there is rot90(u) * sign(k) (for a CCW arc the tangent is the outward normal turned left).
+    let u = kc / len * k.signum();
+    let tangent = Vector2::new(-u.y, u.x) * k.signum();
+    match reach(arc, tangent) {
+        Some(_) => ends.max((len + 1.0) / k.abs()),
+        None => ends,
+    }
+}
+
+/// Exact axis-aligned box of an arc.
+fn arc_aabb(arc: &Arc) -> Aabb2 {
+    let mut bb = Aabb2 {
+        min: arc.start,
+        max: arc.start,
+    }
+    .including(arc.end);
+    for dir in [Vector2::x(), -Vector2::x(), Vector2::y(), -Vector2::y()] {
+        if let Some(s) = reach(arc, dir) {
+            bb = bb.including(arc.point_at(s));
+        }
+    }
+    bb
+}

@@ -1,0 +1,209 @@
+//! Tests of the biarc tree against dense sampling of the profile curves.
+
+use super::fit::PlanarCurve;
+use super::oracle::sampled_hausdorff;
+use super::tree::{BiarcTree, TreeError};
+use crate::nurbs::NurbsCurve;
+use crate::profile::Profile;
+use nalgebra::{Point2, Vector2};
+
+/// Samples per node for the sampled Hausdorff check.
+const SAMPLES: usize = 200;
+
+/// A NURBS piece as a [`PlanarCurve`] in its own parameter (independent evaluator: de Boor in
+/// the nurbs module, not the span evaluator the tree uses).
+pub(crate) struct Piece<'a>(pub &'a NurbsCurve);
+
+impl PlanarCurve for Piece<'_> {
+    fn point_and_derivative(&self, t: f64) -> (Point2<f64>, Vector2<f64>) {
+        let d = self.0.derivatives(t);
+        (Point2::from(d[0]), d[1])
+    }
+}
+
+/// Checks every node of `tree` (internal and leaf) against the sampled curve: two-sided
+/// Hausdorff <= eps, curve inside the disk, within chord_distance of the chord, inside the
+/// spiral's box. Returns the worst `eps / sampled` over nodes with a sampled error above 1e-11.
+pub(crate) fn check_tree(profile: &Profile, tree: &BiarcTree) -> f64 {
+    let mut worst: f64 = 0.0;
+    for node in tree.nodes() {
+        let s = tree.spirals()[node.spiral()];
+        let piece = Piece(&profile.pieces()[s.piece]);
+        let (t0, t1) = node.param_range();
+        let h = sampled_hausdorff(&piece, t0, t1, node.arcs(), SAMPLES);
+        assert!(
+            h <= node.eps(),
+            "node {t0}..{t1}: sampled {h} > eps {}",
+            node.eps()
+        );
+        if node.is_leaf() {
+            assert!(node.eps() <= tree.eps());
+        }
+        if h > 1e-11 {
+            worst = worst.max(node.eps() / h);
+        }
+        let disk = node.bounding_disk();
+        let (a, b) = node.chord();
+        for i in 0..=SAMPLES {
+            let t = t0 + (t1 - t0) * i as f64 / SAMPLES as f64;
+            let p = piece.point_and_derivative(t).0;
+            assert!((p - disk.center).norm() <= disk.radius, "outside disk");
+            let d = b - a;
+            let u = ((p - a).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+            assert!(
+                (p - (a + d * u)).norm() <= node.chord_distance(),
+                "outside chord band"
+            );
+            let bb = s.aabb;
+            assert!(p.x >= bb.min.x && p.y >= bb.min.y && p.x <= bb.max.x && p.y <= bb.max.y);
+        }
+        let defect = {
+            let (t0, t1) = (node.arcs()[0].end_tangent(), node.arcs()[1].start_tangent);
+            (t0.x * t1.y - t0.y * t1.x).atan2(t0.dot(&t1)).abs()
+        };
+        let shortest = node.arcs()[0].length.min(node.arcs()[1].length);
+        let allowed = super::fit::G1_TOL.max(64.0 * f64::EPSILON * 4.0 / shortest);
+        assert!(defect <= allowed, "G1 defect {defect}");
+    }
+    // Leaves chain up: consecutive leaves share end points.
+    let leaves: Vec<_> = tree.leaves().collect();
+    for w in leaves.windows(2) {
+        let gap = (w[0].arcs()[1].end - w[1].arcs()[0].start).norm();
+        assert!(gap < 1e-9, "leaf chain gap {gap}");
+    }
+    worst
+}
+
+fn p(x: f64, y: f64) -> Point2<f64> {
+    Point2::new(x, y)
+}
+
+/// Unit sphere profile: two rational quadratic quarter circles, from (0,-1) to (0,1).
+pub(crate) fn sphere() -> Profile {
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let c = NurbsCurve::new(
+        2,
+        vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0],
+        vec![p(0., -1.), p(1., -1.), p(1., 0.), p(1., 1.), p(0., 1.)],
+        Some(vec![1.0, s, 1.0, s, 1.0]),
+    )
+    .unwrap();
+    Profile::new("sphere", vec![c]).unwrap()
+}
+
+/// A vase-like profile: a cubic B-spline with inflections and curvature extrema, closed by
+/// segments to the axis (a G0 crease at each junction).
+pub(crate) fn vase() -> Profile {
+    let pts = vec![
+        p(0.6, 0.0),
+        p(0.9, 0.2),
+        p(0.4, 0.8),
+        p(0.3, 1.2),
+        p(0.7, 1.6),
+        p(0.5, 2.0),
+        p(0.35, 2.2),
+    ];
+    let n = pts.len();
+    let mut knots = vec![0.0; 4];
+    for i in 1..n - 3 {
+        knots.push(i as f64 / (n - 3) as f64);
+    }
+    knots.extend([1.0; 4]);
+    let spline = NurbsCurve::new(3, knots, pts.clone(), None).unwrap();
+    let bottom = NurbsCurve::line(p(0.0, 0.0), pts[0]).unwrap();
+    let top = NurbsCurve::line(pts[n - 1], p(0.0, 2.2)).unwrap();
+    Profile::new("vase", vec![bottom, spline, top]).unwrap()
+}
+
+#[test]
+fn sphere_is_one_leaf_per_spiral() {
+    let prof = sphere();
+    for eps in [1e-3, 1e-6, 1e-9] {
+        let tree = BiarcTree::build(&prof, eps).unwrap();
+        let st = tree.stats();
+        assert_eq!(st.nodes, st.spirals, "circle arcs must not split: {st:?}");
+        assert_eq!(st.leaves, st.spirals);
+        for n in tree.nodes() {
+            assert!(n.eps() < 1e-13, "circle bound {}", n.eps());
+            for a in n.arcs() {
+                assert!((a.radius() - 1.0).abs() < 1e-12);
+            }
+        }
+        check_tree(&prof, &tree);
+    }
+}
+
+#[test]
+fn vase_bounds_hold_on_every_node() {
+    let prof = vase();
+    let mut prev = 0;
+    for eps in [1e-2, 1e-3, 1e-4, 1e-5] {
+        let tree = BiarcTree::build(&prof, eps).unwrap();
+        let worst = check_tree(&prof, &tree);
+        assert!(worst < 3.0, "eps {eps}: bound / sampled up to {worst}");
+        let st = tree.stats();
+        assert!(st.nodes >= prev);
+        prev = st.nodes;
+        assert_eq!(st.nodes, 2 * st.leaves - st.spirals);
+        // straight pieces are single segments
+        for s in [tree.spirals()[0], *tree.spirals().last().unwrap()] {
+            let n = tree.node(s.root);
+            assert!(n.is_leaf() && n.arcs().iter().all(|a| a.is_segment()));
+        }
+    }
+}
+
+#[test]
+fn rebuild_reuses_and_matches_build() {
+    let prof = vase();
+    let fresh = BiarcTree::build(&prof, 1e-5).unwrap();
+    let mut tree = BiarcTree::build(&sphere(), 1e-5).unwrap();
+    tree.rebuild(&prof, 1e-5).unwrap();
+    assert_eq!(tree.nodes(), fresh.nodes());
+    assert_eq!(tree.spirals(), fresh.spirals());
+    assert_eq!(tree.upper_nodes(), fresh.upper_nodes());
+    let ptr = tree.nodes().as_ptr();
+    tree.rebuild(&prof, 1e-5).unwrap();
+    assert_eq!(
+        ptr,
+        tree.nodes().as_ptr(),
+        "rebuild reallocated the node array"
+    );
+}
+
+#[test]
+fn upper_level_contains_spirals() {
+    let tree = BiarcTree::build(&vase(), 1e-4).unwrap();
+    let up = tree.upper_nodes();
+    let mut seen = vec![false; tree.spirals().len()];
+    let mut stack = vec![tree.upper_root().unwrap()];
+    while let Some(i) = stack.pop() {
+        let n = up[i as usize];
+        if let Some(s) = n.spiral {
+            seen[s] = true;
+        }
+        for c in n.children.into_iter().flatten() {
+            let cb = up[c as usize].aabb;
+            assert!(cb.min.x >= n.aabb.min.x && cb.max.y <= n.aabb.max.y);
+            stack.push(c);
+        }
+    }
+    assert!(seen.iter().all(|&x| x));
+}
+
+#[test]
+fn bad_eps_is_an_error() {
+    let prof = sphere();
+    assert_eq!(
+        BiarcTree::build(&prof, 0.0).unwrap_err(),
+        TreeError::InvalidEps(0.0)
+    );
+    assert!(matches!(
+        BiarcTree::build(&prof, f64::NAN),
+        Err(TreeError::InvalidEps(_))
+    ));
+    assert!(matches!(
+        BiarcTree::build(&prof, 1e-15),
+        Err(TreeError::EpsTooSmall { .. })
+    ));
+}
