@@ -11,6 +11,7 @@
 //! [`models`].
 
 pub mod biarc;
+pub mod circle;
 pub mod models;
 pub mod nurbs;
 pub mod poly;

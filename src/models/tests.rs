@@ -406,3 +406,38 @@ fn morph_frames_keep_their_pieces_apart() {
     }
     println!("narrowest frame clearance {narrowest}");
 }
+
+#[test]
+fn every_model_and_morph_frames_build_biarc_trees() {
+    use crate::biarc::tree::BiarcTree;
+    for name in model_names() {
+        for eps in [1e-3, 1e-5] {
+            let tree = BiarcTree::build(&model(name).unwrap(), eps)
+                .unwrap_or_else(|e| panic!("{name} at eps {eps}: {e}"));
+            println!("{name} eps {eps}: {:?}", tree.stats());
+        }
+    }
+    let morph = Morph::shared().unwrap();
+    let mut tree = BiarcTree::build(&morph.frame(0.0).unwrap(), 1e-4).unwrap();
+    for j in 0..50 {
+        let t = (j as f64 + 0.5) / 50.0;
+        tree.rebuild(&morph.frame(t).unwrap(), 1e-4)
+            .unwrap_or_else(|e| panic!("morph@{t}: {e}"));
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Any finite t (wrapped into [0, 1)) gives a simple open profile whose interior stays off
+    /// the axis, and `morph@t` by name is the same frame.
+    #[test]
+    fn morph_at_any_finite_t_is_a_simple_profile(t in -10.0f64..10.0) {
+        let frame = morph::morph(t).unwrap();
+        proptest::prop_assert_eq!(frame.kind(), ProfileKind::OpenOnAxis);
+        proptest::prop_assert_eq!(polyline_self_intersection(&frame, 16), None);
+        proptest::prop_assert!(min_interior_rho(&frame, 16, 0.005) > 0.0);
+        let named = model(&format!("morph@{t}")).unwrap();
+        proptest::prop_assert_eq!(named.pieces(), frame.pieces());
+    }
+}
