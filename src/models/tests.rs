@@ -471,3 +471,38 @@ proptest::proptest! {
         proptest::prop_assert_eq!(named.pieces(), frame.pieces());
     }
 }
+/// Tangent turn (radians) allowed at a frame's block joint that is smooth in both keyframes
+/// being blended: rounding of the handle alignment (about 1e-13 measured).
+const FRAME_G1_TURN: f64 = 1e-9;
+
+#[test]
+fn morph_frames_are_g1_where_both_keyframes_are() {
+    let morph = Morph::shared().unwrap();
+    let keyframes: Vec<Profile> = (0..5)
+        .map(|k| morph.frame(k as f64 / 5.0).unwrap())
+        .collect();
+    let turn = |p: &Profile, i: usize| {
+        let (a, b) = (&p.pieces()[i], &p.pieces()[i + 1]);
+        let u = unit_tangent(a, a.domain().1);
+        let v = unit_tangent(b, b.domain().0);
+        u.perp(&v).atan2(u.dot(&v)).abs()
+    };
+    let mut checked = 0;
+    for j in 0..500 {
+        let t = (j as f64 + 0.5) / 500.0;
+        let frame = morph.frame(t).unwrap();
+        let k = (t * 5.0).floor() as usize;
+        for i in 0..MORPH_BLOCKS - 1 {
+            let smooth = |p: &Profile| turn(p, i) < FRAME_G1_TURN;
+            if smooth(&keyframes[k]) && smooth(&keyframes[(k + 1) % 5]) {
+                checked += 1;
+                assert!(
+                    turn(&frame, i) < FRAME_G1_TURN,
+                    "t = {t}, joint {i}: {}",
+                    turn(&frame, i)
+                );
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked}");
+}
