@@ -129,11 +129,14 @@ impl Morph {
         let mut smooth_joints = Vec::with_capacity(5);
         let mut reports = Vec::with_capacity(5);
         for ((name, source), closing) in KEYFRAME_NAMES.iter().zip(&sources).zip(CLOSING_ANCHOR) {
-            let (points, smooth, report) =
-                fit_keyframe(name, source, closing).map_err(|detail| ModelError::MorphFit {
-                    model: name.to_string(),
-                    detail,
-                })?;
+            let FittedKeyframe {
+                points,
+                smooth,
+                report,
+            } = fit_keyframe(name, source, closing).map_err(|detail| ModelError::MorphFit {
+                model: name.to_string(),
+                detail,
+            })?;
             keyframes.push(points);
             smooth_joints.push(smooth);
             reports.push(report);
@@ -333,12 +336,21 @@ struct Block {
     error: f64,
 }
 
+/// One keyframe in common representation.
+struct FittedKeyframe {
+    /// Control points, blocks concatenated.
+    points: Vec<Point2<f64>>,
+    /// Whether the boundary between block j and block j + 1 is smooth.
+    smooth: Vec<bool>,
+    report: MorphFitReport,
+}
+
 /// Fit one open-on-axis profile to the common representation.
 fn fit_keyframe(
     name: &'static str,
     source: &Profile,
     closing: (usize, f64),
-) -> Result<(Vec<Point2<f64>>, Vec<bool>, MorphFitReport), String> {
+) -> Result<FittedKeyframe, String> {
     let pieces = source.pieces();
     let table = ArcLength::new(pieces);
     let first = pieces.first().ok_or("empty profile")?;
@@ -425,15 +437,15 @@ fn fit_keyframe(
         .iter()
         .map(|b| matches!(b.start, EndCondition::Tangent(_)))
         .collect();
-    Ok((
+    Ok(FittedKeyframe {
         points,
         smooth,
-        MorphFitReport {
+        report: MorphFitReport {
             model: name,
             max_deviation,
             creases,
         },
-    ))
+    })
 }
 
 /// Unknowns of one control point in the block least-squares problem.
