@@ -56,12 +56,12 @@ pub const KEYFRAME_NAMES: [&str; 5] = ["pawn", "cup", "bottle", "table", "lightm
 /// fraction of that piece's arc length): the cup's rim with the cavity behind it, and the
 /// parts of the others' tops that it blends into: the polar cap of the pawn's head, the
 /// bottle's and the table's flat tops, the upper half of the lightmill's finial.
-const CLOSING_ANCHOR: [(usize, f64); 5] = [(8, 0.8), (3, 0.0), (7, 0.0), (7, 0.0), (10, 0.5)];
+pub const CLOSING_ANCHOR: [(usize, f64); 5] = [(8, 0.8), (3, 0.0), (7, 0.0), (7, 0.0), (10, 0.5)];
 /// Blocks per region of every keyframe: the bottom disk (first piece), the outer side, and
 /// the closing region back to the axis. Aligning the regions makes corresponding blocks
 /// play the same part in every keyframe (the cup's cavity blends into the others' tops), so
 /// that the blends do not fold over themselves.
-const REGION_BLOCKS: [usize; 3] = [1, 11, 4];
+pub const REGION_BLOCKS: [usize; 3] = [1, 11, 4];
 
 /// Tangent turn (radians) above which a join between two source pieces is a crease and the
 /// fit leaves it a free corner. The models' smooth joins agree to rounding (about 1e-15);
