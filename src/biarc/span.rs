@@ -29,17 +29,18 @@ impl PlanarCurve for SpanCurve<'_> {
                 Vector2::zeros(),
             );
         }
-        let mut q = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
-        q[..=n].copy_from_slice(h);
         let v = 1.0 - u;
-        for r in 1..n {
-            for i in 0..=n - r {
-                let next = q[i + 1];
-                for (qc, nc) in q[i].iter_mut().zip(next) {
-                    *qc = v * *qc + u * nc;
-                }
-            }
-        }
+        // The last two de Casteljau points; a small fixed buffer for the usual degrees <= 3.
+        let (q0, q1) = if n <= 3 {
+            let mut q = [[0.0f64; 3]; 4];
+            q[..=n].copy_from_slice(h);
+            last_two(&mut q[..=n], u, v)
+        } else {
+            let mut q = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
+            q[..=n].copy_from_slice(h);
+            last_two(&mut q[..=n], u, v)
+        };
+        let q = [q0, q1];
         let p = [
             v * q[0][0] + u * q[1][0],
             v * q[0][1] + u * q[1][1],
@@ -59,6 +60,21 @@ impl PlanarCurve for SpanCurve<'_> {
         );
         (point, d)
     }
+}
+
+/// Runs de Casteljau on `q` down to two points and returns them.
+#[inline]
+fn last_two(q: &mut [[f64; 3]], u: f64, v: f64) -> ([f64; 3], [f64; 3]) {
+    let n = q.len() - 1;
+    for r in 1..n {
+        for i in 0..=n - r {
+            let next = q[i + 1];
+            for (qc, nc) in q[i].iter_mut().zip(next) {
+                *qc = v * *qc + u * nc;
+            }
+        }
+    }
+    (q[0], q[1])
 }
 
 #[cfg(test)]

@@ -5,21 +5,10 @@ use super::oracle::sampled_hausdorff;
 use super::tree::{BiarcTree, TreeError};
 use crate::nurbs::NurbsCurve;
 use crate::profile::Profile;
-use nalgebra::{Point2, Vector2};
+use nalgebra::Point2;
 
 /// Samples per node for the sampled Hausdorff check.
 const SAMPLES: usize = 200;
-
-/// A NURBS piece as a [`PlanarCurve`] in its own parameter (independent evaluator: de Boor in
-/// the nurbs module, not the span evaluator the tree uses).
-pub(crate) struct Piece<'a>(pub &'a NurbsCurve);
-
-impl PlanarCurve for Piece<'_> {
-    fn point_and_derivative(&self, t: f64) -> (Point2<f64>, Vector2<f64>) {
-        let d = self.0.derivatives(t);
-        (Point2::from(d[0]), d[1])
-    }
-}
 
 /// Checks every node of `tree` (internal and leaf) against the sampled curve: two-sided
 /// Hausdorff <= eps, curve inside the disk, within chord_distance of the chord, inside the
@@ -28,9 +17,9 @@ pub(crate) fn check_tree(profile: &Profile, tree: &BiarcTree) -> f64 {
     let mut worst: f64 = 0.0;
     for node in tree.nodes() {
         let s = tree.spirals()[node.spiral()];
-        let piece = Piece(&profile.pieces()[s.piece]);
+        let piece = &profile.pieces()[s.piece];
         let (t0, t1) = node.param_range();
-        let h = sampled_hausdorff(&piece, t0, t1, node.arcs(), SAMPLES);
+        let h = sampled_hausdorff(piece, t0, t1, node.arcs(), SAMPLES);
         assert!(
             h <= node.eps(),
             "node {t0}..{t1}: sampled {h} > eps {}",
