@@ -11,7 +11,9 @@
 //! [`models`].
 
 pub mod biarc;
+pub mod models;
 pub mod nurbs;
 pub mod poly;
 pub mod profile;
 pub mod profile_file;
+pub mod svg;

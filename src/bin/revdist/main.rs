@@ -1,1 +1,52 @@
-fn main() {}
+//! `revdist`: command-line front end. A thin dispatcher: each subcommand lives in its own
+//! file and returns a `Result`; errors are printed as `error: ...` with exit code 2.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod export;
+mod figures;
+mod input;
+mod models;
+mod profile;
+
+/// Result of a subcommand.
+pub type CmdResult = Result<(), Box<dyn std::error::Error>>;
+
+/// Minimum distance between solids of revolution (Son, Yoon, Kim, Elber 2020).
+#[derive(Debug, Parser)]
+#[command(name = "revdist", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// List the built-in models (name, kind, pieces, height).
+    Models(models::Args),
+    /// Draw a profile (built-in name or profile file) and its control polygon as SVG.
+    Profile(profile::Args),
+    /// Write a built-in model (or a re-read profile file) as a TOML profile file.
+    Export(export::Args),
+    /// Draw every built-in model and frames of the deformable model into a directory.
+    Figures(figures::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Models(args) => models::run(args),
+        Command::Profile(args) => profile::run(args),
+        Command::Export(args) => export::run(args),
+        Command::Figures(args) => figures::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
