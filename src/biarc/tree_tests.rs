@@ -9,17 +9,25 @@ use nalgebra::Point2;
 
 /// Samples per node for the sampled Hausdorff check.
 const SAMPLES: usize = 200;
+/// Samples per node for the all-models check (kept small so the suite stays fast; the
+/// golden-section refinement makes the arc-to-curve side exact between samples).
+const MODEL_SAMPLES: usize = 48;
 
 /// Checks every node of `tree` (internal and leaf) against the sampled curve: two-sided
 /// Hausdorff <= eps, curve inside the disk, within chord_distance of the chord, inside the
 /// spiral's box. Returns the worst `eps / sampled` over nodes with a sampled error above 1e-11.
 pub(crate) fn check_tree(profile: &Profile, tree: &BiarcTree) -> f64 {
+    check_tree_with(profile, tree, SAMPLES)
+}
+
+/// [`check_tree`] with `samples` samples per node.
+pub(crate) fn check_tree_with(profile: &Profile, tree: &BiarcTree, samples: usize) -> f64 {
     let mut worst: f64 = 0.0;
     for node in tree.nodes() {
         let s = tree.spirals()[node.spiral()];
         let piece = &profile.pieces()[s.piece];
         let (t0, t1) = node.param_range();
-        let h = sampled_hausdorff(piece, t0, t1, node.arcs(), SAMPLES);
+        let h = sampled_hausdorff(piece, t0, t1, node.arcs(), samples);
         assert!(
             h <= node.eps(),
             "node {t0}..{t1}: sampled {h} > eps {}",
@@ -33,8 +41,8 @@ pub(crate) fn check_tree(profile: &Profile, tree: &BiarcTree) -> f64 {
         }
         let disk = node.bounding_disk();
         let (a, b) = node.chord();
-        for i in 0..=SAMPLES {
-            let t = t0 + (t1 - t0) * i as f64 / SAMPLES as f64;
+        for i in 0..=samples {
+            let t = t0 + (t1 - t0) * i as f64 / samples as f64;
             let p = piece.point_and_derivative(t).0;
             assert!((p - disk.center).norm() <= disk.radius, "outside disk");
             let d = b - a;
@@ -195,4 +203,23 @@ fn bad_eps_is_an_error() {
         BiarcTree::build(&prof, 1e-15),
         Err(TreeError::EpsTooSmall { .. })
     ));
+}
+
+#[test]
+fn every_built_in_model_is_bounded() {
+    let mut worst: f64 = 0.0;
+    let mut names: Vec<String> = crate::models::model_names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    names.extend(["morph@0", "morph@0.37", "morph@0.8"].map(String::from));
+    for name in &names {
+        let prof = crate::models::model(name).unwrap();
+        for eps in [1e-3, 1e-5] {
+            let tree = BiarcTree::build(&prof, eps).unwrap();
+            worst = worst.max(check_tree_with(&prof, &tree, MODEL_SAMPLES));
+        }
+    }
+    eprintln!("models: worst bilens bound / sampled Hausdorff = {worst:.3}");
+    assert!(worst < 3.0, "bound / sampled up to {worst}");
 }

@@ -10,6 +10,7 @@ mod figures;
 mod input;
 mod models;
 mod profile;
+mod tree;
 
 /// Result of a subcommand.
 pub type CmdResult = Result<(), Box<dyn std::error::Error>>;
@@ -32,6 +33,8 @@ enum Command {
     Export(export::Args),
     /// Draw every built-in model and frames of the deformable model into a directory.
     Figures(figures::Args),
+    /// Build the biarc tree of a profile: node counts, depth, bytes, build time; optional SVG.
+    Tree(tree::Args),
 }
 
 fn main() -> ExitCode {
@@ -41,6 +44,7 @@ fn main() -> ExitCode {
         Command::Profile(args) => profile::run(args),
         Command::Export(args) => export::run(args),
         Command::Figures(args) => figures::run(args),
+        Command::Tree(args) => tree::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
