@@ -11,9 +11,12 @@
 //! [`models`].
 
 pub mod biarc;
+pub mod circle;
 pub mod models;
 pub mod nurbs;
 pub mod poly;
 pub mod profile;
 pub mod profile_file;
+pub mod query;
+pub mod solid;
 pub mod svg;

@@ -156,7 +156,6 @@ pub fn odd_roots_into(
         return;
     }
     let (piece, rest) = scratch.split_at_mut(m);
-    let dpiece = &mut rest[..m - 1];
     let tol = t_tol.max(MIN_WIDTH);
     let mut stack = [(0.0f64, 0.0f64); STACK_CAP];
     let mut top = 1;
@@ -165,12 +164,34 @@ pub fn odd_roots_into(
         top -= 1;
         let (a, b) = stack[top];
         restrict_into(c, a, b, piece);
+        let (f0, f1) = (piece[0], piece[m - 1]);
+        if f1 == 0.0 && b < hi {
+            // A root exactly on the split point b (de Casteljau made it an exact zero):
+            // the right neighbour starts with the same zero, so only this piece reports it,
+            // when the sign changes across b.
+            let left = piece
+                .iter()
+                .rev()
+                .find(|&&x| x != 0.0)
+                .copied()
+                .unwrap_or(0.0);
+            restrict_into(c, b, (2.0 * b - a).min(hi), dpiece_full(rest, m));
+            let right = rest[..m]
+                .iter()
+                .find(|&&x| x != 0.0)
+                .copied()
+                .unwrap_or(0.0);
+            restrict_into(c, a, b, piece);
+            if left * right < 0.0 {
+                sink(b);
+            }
+        }
         let v = sign_variations(piece);
         if v == 0 {
             continue;
         }
-        let (f0, f1) = (piece[0], piece[m - 1]);
         if v == 1 && f0 != 0.0 && f1 != 0.0 {
+            let dpiece = &mut rest[..m - 1];
             derivative_into(piece, dpiece);
             let x = refine_bracketed(piece, dpiece, tol / (b - a));
             sink(a + x * (b - a));
@@ -196,6 +217,11 @@ pub fn odd_roots_into(
         stack[top + 1] = (a, mid);
         top += 2;
     }
+}
+
+#[inline]
+fn dpiece_full(rest: &mut [f64], m: usize) -> &mut [f64] {
+    &mut rest[..m]
 }
 
 /// Converges on the single sign change of `q` in (0, 1) (q(0) q(1) < 0), returning the

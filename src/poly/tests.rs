@@ -200,3 +200,20 @@ proptest! {
         prop_assert!(sampled_sign_changes(&p, 2000) <= found.len());
     }
 }
+
+#[test]
+fn double_root_exactly_on_a_split_point() {
+    // Symmetric about 1/2: the derivative's root sits exactly where bisection splits, and
+    // de Casteljau makes it an exact zero on both children's boundary.
+    let p = from_roots(&[0.5, 0.5], 1.0).product(&Bernstein::from_power(&[1.0, 0.0, 1.0]));
+    let sym = Bernstein::new(
+        p.coeffs()
+            .iter()
+            .zip(p.coeffs().iter().rev())
+            .map(|(x, y)| 0.5 * (x + y))
+            .collect(),
+    );
+    assert!(roots(&sym, 1e-15).iter().any(|x| (x - 0.5).abs() < 1e-12));
+    let d = from_roots(&[0.5], 1.0).product(&Bernstein::from_power(&[1.0, 0.0, 1.0]));
+    assert_roots(&odd_roots(&d, 1e-15), &[0.5], 1e-12);
+}

@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod distance;
 mod export;
 mod figures;
 mod input;
@@ -35,6 +36,8 @@ enum Command {
     Figures(figures::Args),
     /// Build the biarc tree of a profile: node counts, depth, bytes, build time; optional SVG.
     Tree(tree::Args),
+    /// Minimum distance between two posed solids (one query, or JSON lines with --batch).
+    Distance(distance::Args),
 }
 
 fn main() -> ExitCode {
@@ -45,6 +48,7 @@ fn main() -> ExitCode {
         Command::Export(args) => export::run(args),
         Command::Figures(args) => figures::run(args),
         Command::Tree(args) => tree::run(args),
+        Command::Distance(args) => distance::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
