@@ -84,6 +84,11 @@ fn push_roots(p: &Bernstein, scale: f64, reason: SplitReason, out: &mut Vec<(f64
     if p.is_negligible(SPLIT_NOISE_REL * scale) {
         return;
     }
+    // Bernstein coefficients of one strict sign: no root on [0, 1] (convex hull property).
+    let c = p.coeffs();
+    if c.iter().all(|&v| v > 0.0) || c.iter().all(|&v| v < 0.0) {
+        return;
+    }
     out.extend(
         odd_roots(p, SPLIT_ROOT_TOL)
             .into_iter()

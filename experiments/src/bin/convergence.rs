@@ -213,13 +213,23 @@ fn draw(path: &PathBuf, names: &[String], rows: &[Row]) -> Result<(), Box<dyn st
                     .label(name.as_str())
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
             } else {
-                chart.draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))?;
+                let series = chart.draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))?;
+                // models approximated exactly by biarcs have only a chord curve: label it
+                if !shown
+                    .iter()
+                    .any(|r| &r.model == name && r.method == "biarc")
+                {
+                    series
+                        .label(format!("{name} (chords only; biarcs exact)"))
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+                }
             }
             chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
         }
     }
     chart
         .configure_series_labels()
+        .position(SeriesLabelPosition::LowerLeft)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 12))

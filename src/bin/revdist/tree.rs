@@ -42,7 +42,12 @@ pub fn run(args: Args) -> CmdResult {
     times.sort_by(f64::total_cmp);
     let build_ms = times[times.len() / 2];
     let st = tree.stats();
-    let max_eps = tree.nodes().iter().filter(|n| n.is_leaf()).map(|n| n.eps()).fold(0.0, f64::max);
+    let max_eps = tree
+        .nodes()
+        .iter()
+        .filter(|n| n.is_leaf())
+        .map(|n| n.eps())
+        .fold(0.0, f64::max);
     if args.json {
         let v = serde_json::json!({
             "profile": profile.name(),
@@ -62,7 +67,12 @@ pub fn run(args: Args) -> CmdResult {
         println!("profile      {}", profile.name());
         println!("eps          {:e}", args.eps);
         println!("spirals      {}", st.spirals);
-        println!("nodes        {} ({} leaves, {} arcs)", st.nodes, st.leaves, 2 * st.leaves);
+        println!(
+            "nodes        {} ({} leaves, {} arcs)",
+            st.nodes,
+            st.leaves,
+            2 * st.leaves
+        );
         println!("upper nodes  {}", st.upper_nodes);
         println!("depth        {}", st.depth);
         println!("bytes        {}", st.bytes);
@@ -86,9 +96,9 @@ fn arc_path(arc: &Arc, map: &impl Fn(nalgebra::Point2<f64>) -> (f64, f64)) -> St
     }
     let r = arc.radius() * map_scale(map);
     let large = u8::from(arc.sweep.abs() > std::f64::consts::PI);
-    // z points up, SVG y down: a counter-clockwise arc in (rho, z) is clockwise on screen,
-    // which SVG calls sweep-flag 1.
-    let sweep = u8::from(arc.sweep > 0.0);
+    // The map flips z, so a counter-clockwise arc in (rho, z) (sweep > 0) needs SVG's
+    // sweep-flag 0 (checked by drawing the pawn's arcs over its sampled profile).
+    let sweep = u8::from(arc.sweep < 0.0);
     format!("A {r:.6} {r:.6} 0 {large} {sweep} {x:.6} {y:.6}")
 }
 
@@ -148,7 +158,10 @@ fn tree_svg(profile: &Profile, tree: &BiarcTree) -> String {
             r#"<path d="{d}" fill="none" stroke="{color}" stroke-width="1.5"/>"#
         );
         let (xj, yj) = map(leaf.arcs()[0].end);
-        let _ = writeln!(s, r#"<circle cx="{xj:.6}" cy="{yj:.6}" r="1.5" fill="{color}"/>"#);
+        let _ = writeln!(
+            s,
+            r#"<circle cx="{xj:.6}" cy="{yj:.6}" r="1.5" fill="{color}"/>"#
+        );
     }
     let pts: Vec<String> = profile
         .sample(200)
