@@ -311,18 +311,18 @@ fn write_query_outputs(
     std::fs::write(out.join("query_times.md"), md)?;
 
     let path = out.join("query_times.svg");
-    let root = SVGBackend::new(&path, (720, 480)).into_drawing_area();
+    let root = SVGBackend::new(&path, (820, 480)).into_drawing_area();
     root.fill(&WHITE)?;
+    let (plot_area, legend_area) = root.split_horizontally(640);
     let t_max = rows.iter().map(|r| r.median_us).fold(1.0, f64::max) * 2.0;
     let t_min = rows
         .iter()
         .map(|r| r.median_us)
         .fold(f64::INFINITY, f64::min)
         / 2.0;
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(&plot_area)
         .caption("median certified query time vs eps", ("sans-serif", 18))
         .margin(12)
-        .margin_right(150)
         .x_label_area_size(40)
         .y_label_area_size(60)
         .build_cartesian_2d(
@@ -351,22 +351,20 @@ fn write_query_outputs(
             .filter(|r| &r.a == a && &r.b == b)
             .map(|r| (r.eps, r.median_us))
             .collect();
-        chart
-            .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?
-            .label(format!("{a}-{b}"))
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2))
-            });
+        chart.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?;
         chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+        // Legend outside the plot: one coloured line and label per pair.
+        let y = 40 + 22 * k as i32;
+        legend_area.draw(&PathElement::new(
+            vec![(8, y), (32, y)],
+            colour.stroke_width(2),
+        ))?;
+        legend_area.draw(&Text::new(
+            format!("{a}-{b}"),
+            (38, y - 7),
+            ("sans-serif", 12),
+        ))?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .margin(4)
-        .label_font(("sans-serif", 11))
-        .border_style(BLACK.mix(0.3))
-        .background_style(WHITE.mix(0.9))
-        .draw()?;
     root.present()?;
     Ok(())
 }
