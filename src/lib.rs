@@ -17,4 +17,6 @@ pub mod nurbs;
 pub mod poly;
 pub mod profile;
 pub mod profile_file;
+pub mod query;
+pub mod solid;
 pub mod svg;

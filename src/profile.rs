@@ -88,8 +88,9 @@ impl Profile {
             .expect("non-empty");
         let scale = bbox.diagonal();
         let join_tol = JOIN_TOLERANCE_REL * scale.max(f64::MIN_POSITIVE);
+        let zero_length = ZERO_LENGTH_REL * scale;
         for (piece, c) in pieces.iter().enumerate() {
-            if c.arc_length(ZERO_LENGTH_REL * scale) <= ZERO_LENGTH_REL * scale || scale == 0.0 {
+            if scale == 0.0 || has_zero_length(c, zero_length) {
                 return Err(ProfileError::ZeroLength { piece });
             }
         }
@@ -168,6 +169,24 @@ impl Profile {
         }
         out
     }
+}
+
+/// Number of chords of the cheap lower bound on a piece's length in [`has_zero_length`].
+const LENGTH_PROBE_CHORDS: usize = 16;
+
+/// Whether `curve` is no longer than `threshold`. An inscribed polyline is never longer than
+/// the curve, so a probe polyline longer than `threshold` settles the common case without
+/// quadrature; only near-degenerate pieces pay for the adaptive arc length.
+fn has_zero_length(curve: &NurbsCurve, threshold: f64) -> bool {
+    let (a, b) = curve.domain();
+    let probe: f64 = (0..LENGTH_PROBE_CHORDS)
+        .map(|i| {
+            let t0 = a + (b - a) * i as f64 / LENGTH_PROBE_CHORDS as f64;
+            let t1 = a + (b - a) * (i + 1) as f64 / LENGTH_PROBE_CHORDS as f64;
+            (curve.eval(t1) - curve.eval(t0)).norm()
+        })
+        .sum();
+    probe <= threshold && curve.arc_length(threshold) <= threshold
 }
 
 #[cfg(test)]

@@ -159,17 +159,44 @@ impl SvgCanvas {
         if points.is_empty() {
             return;
         }
+        let _ = writeln!(
+            self.body,
+            r#"<polyline points="{}" {} stroke-linejoin="round"/>"#,
+            self.screen_coords(points),
+            style.attributes()
+        );
+    }
+
+    /// Closed polygon through world points (e.g. a filled error band).
+    pub fn polygon(&mut self, points: &[Point2<f64>], style: &Style) {
+        if points.is_empty() {
+            return;
+        }
+        let _ = writeln!(
+            self.body,
+            r#"<polygon points="{}" {} stroke-linejoin="round"/>"#,
+            self.screen_coords(points),
+            style.attributes()
+        );
+    }
+
+    /// Any SVG element text in screen coordinates, added as is (for what the helpers above
+    /// do not cover).
+    pub fn raw(&mut self, element: &str) {
+        self.body.push_str(element);
+        if !element.ends_with('\n') {
+            self.body.push('\n');
+        }
+    }
+
+    fn screen_coords(&self, points: &[Point2<f64>]) -> String {
         let mut coords = String::with_capacity(points.len() * 16);
         for p in points {
             let (x, y) = self.to_screen(*p);
             let _ = write!(coords, "{},{} ", num(x), num(y));
         }
-        let _ = writeln!(
-            self.body,
-            r#"<polyline points="{}" {} stroke-linejoin="round"/>"#,
-            coords.trim_end(),
-            style.attributes()
-        );
+        coords.truncate(coords.trim_end().len());
+        coords
     }
 
     /// Straight segment between world points.
@@ -525,6 +552,31 @@ mod tests {
         // A full turn needs two arc commands, counter-clockwise in the world = sweep flag 0.
         assert_eq!(svg.matches(" A50,50 0 0 0 ").count(), 2, "{svg}");
         assert!(svg.contains("M100,50"), "{svg}");
+    }
+
+    #[test]
+    fn polygons_close_and_fill() {
+        let mut canvas = SvgCanvas::new(
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 1.0),
+            10.0,
+            10.0,
+            0.0,
+            0.0,
+        );
+        let square = [
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 0.0),
+            Point2::new(1.0, 1.0),
+        ];
+        canvas.polygon(&square, &Style::fill("red").with_opacity(0.5));
+        canvas.raw("<desc>x</desc>");
+        let svg = canvas.finish();
+        assert!(
+            svg.contains(r#"<polygon points="0,10 10,10 10,0" stroke="none" stroke-width="0" fill="red" opacity="0.5""#),
+            "{svg}"
+        );
+        assert!(svg.contains("<desc>x</desc>\n"));
     }
 
     #[test]

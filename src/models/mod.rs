@@ -3,7 +3,7 @@
 //! - The paper's five static solids (section 5, Figure 7): `pawn`, `cup`, `bottle`, `table`,
 //!   `lightmill` ([`paper`]).
 //! - Analytic solids: `ring` (torus), `sphere`, `capsule`, `cylinder`, `cone` ([`basic`]).
-//! - The deformable model M_t of section 5 ([`morph`]): by name as `morph@T` with T a number
+//! - The deformable model M_t of section 5 ([`mod@morph`]): by name as `morph@T` with T a number
 //!   (wrapped into [0, 1)), e.g. `morph@0.25`.
 //!
 //! All profiles run counter-clockwise in the (rho, z) plane (the solid lies to the left of

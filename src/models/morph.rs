@@ -24,7 +24,14 @@
 //! axis, and rho > 0 away from the ends because every keyframe's interior control points
 //! have rho > 0 (convex-hull property). Interpolating blends with non-negative weights must
 //! have zero velocity at the keyframes, so M_t pauses briefly at each static shape.
-//! Frames are G0 at block boundaries where the keyframes' tangents differ.
+//!
+//! **Tangent continuity.** Blending two tangent-continuous joints whose tangents differ gives
+//! a corner (up to 57 degrees here), so at every block boundary that is smooth in both
+//! keyframes being blended, the two handles are turned onto the bisector of their directions
+//! (lengths kept): the frame is G1 there, the keyframes are untouched, and the frame still
+//! moves continuously with t. The frame has corners only where one of the two keyframes has
+//! a crease. This step can move a handle off the convex hull of the blend, so frame validity
+//! (rho >= 0, no self-intersection, clearance) is checked by the tests at 1000 frames.
 
 use std::sync::OnceLock;
 
@@ -49,12 +56,12 @@ pub const KEYFRAME_NAMES: [&str; 5] = ["pawn", "cup", "bottle", "table", "lightm
 /// fraction of that piece's arc length): the cup's rim with the cavity behind it, and the
 /// parts of the others' tops that it blends into: the polar cap of the pawn's head, the
 /// bottle's and the table's flat tops, the upper half of the lightmill's finial.
-const CLOSING_ANCHOR: [(usize, f64); 5] = [(8, 0.8), (3, 0.0), (7, 0.0), (7, 0.0), (10, 0.5)];
+pub const CLOSING_ANCHOR: [(usize, f64); 5] = [(8, 0.8), (3, 0.0), (7, 0.0), (7, 0.0), (10, 0.5)];
 /// Blocks per region of every keyframe: the bottom disk (first piece), the outer side, and
 /// the closing region back to the axis. Aligning the regions makes corresponding blocks
 /// play the same part in every keyframe (the cup's cavity blends into the others' tops), so
 /// that the blends do not fold over themselves.
-const REGION_BLOCKS: [usize; 3] = [1, 11, 4];
+pub const REGION_BLOCKS: [usize; 3] = [1, 11, 4];
 
 /// Tangent turn (radians) above which a join between two source pieces is a crease and the
 /// fit leaves it a free corner. The models' smooth joins agree to rounding (about 1e-15);
@@ -89,6 +96,8 @@ pub struct Morph {
     /// Control points per keyframe, blocks concatenated (neighbouring blocks share their
     /// boundary point): MORPH_BLOCKS * (POINTS_PER_BLOCK - 1) + 1 points.
     keyframes: Vec<Vec<Point2<f64>>>,
+    /// Per keyframe, whether the boundary between block j and block j + 1 is smooth (G1).
+    smooth_joints: Vec<Vec<bool>>,
     reports: Vec<MorphFitReport>,
 }
 
@@ -117,19 +126,25 @@ impl Morph {
             paper::lightmill()?,
         ];
         let mut keyframes = Vec::with_capacity(5);
+        let mut smooth_joints = Vec::with_capacity(5);
         let mut reports = Vec::with_capacity(5);
         for ((name, source), closing) in KEYFRAME_NAMES.iter().zip(&sources).zip(CLOSING_ANCHOR) {
-            let (points, report) =
-                fit_keyframe(name, source, closing).map_err(|detail| ModelError::MorphFit {
-                    model: name.to_string(),
-                    detail,
-                })?;
+            let FittedKeyframe {
+                points,
+                smooth,
+                report,
+            } = fit_keyframe(name, source, closing).map_err(|detail| ModelError::MorphFit {
+                model: name.to_string(),
+                detail,
+            })?;
             keyframes.push(points);
+            smooth_joints.push(smooth);
             reports.push(report);
         }
         Ok(Morph {
             knots: block_knots(),
             keyframes,
+            smooth_joints,
             reports,
         })
     }
@@ -157,13 +172,21 @@ impl Morph {
         out: &mut Vec<Point2<f64>>,
     ) -> Result<(), ModelError> {
         let (k, s) = blend_position(t)?;
-        let (a, b) = (&self.keyframes[k], &self.keyframes[(k + 1) % 5]);
+        let next = (k + 1) % 5;
+        let (a, b) = (&self.keyframes[k], &self.keyframes[next]);
         out.clear();
         out.extend(
             a.iter()
                 .zip(b)
                 .map(|(p, q)| Point2::from(p.coords * (1.0 - s) + q.coords * s)),
         );
+        // Keyframes (s = 0) are returned exactly as fitted.
+        if s > 0.0 {
+            let joints = self.smooth_joints[k].iter().zip(&self.smooth_joints[next]);
+            for (j, _) in joints.enumerate().filter(|(_, (&sa, &sb))| sa && sb) {
+                align_handles(out, (j + 1) * (POINTS_PER_BLOCK - 1));
+            }
+        }
         Ok(())
     }
 
@@ -178,6 +201,26 @@ impl Morph {
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Profile::new(format!("morph@{t}"), pieces)?)
     }
+}
+
+/// Make the two handles at the block joint `joint` (control point index) collinear: both
+/// turn to the bisector of their directions, keeping their lengths. Identity when they are
+/// collinear already (at the keyframes), continuous in the handles otherwise; handles that
+/// vanish or point back onto each other are left alone.
+fn align_handles(points: &mut [Point2<f64>], joint: usize) {
+    let center = points[joint];
+    let (before, after) = (center - points[joint - 1], points[joint + 1] - center);
+    let (Some(u), Some(v)) = (
+        before.try_normalize(f64::MIN_POSITIVE),
+        after.try_normalize(f64::MIN_POSITIVE),
+    ) else {
+        return;
+    };
+    let Some(d) = (u + v).try_normalize(f64::MIN_POSITIVE) else {
+        return;
+    };
+    points[joint - 1] = center - d * before.norm();
+    points[joint + 1] = center + d * after.norm();
 }
 
 /// Keyframe index k and blend weight s of frame t (see the module doc).
@@ -293,12 +336,21 @@ struct Block {
     error: f64,
 }
 
+/// One keyframe in common representation.
+struct FittedKeyframe {
+    /// Control points, blocks concatenated.
+    points: Vec<Point2<f64>>,
+    /// Whether the boundary between block j and block j + 1 is smooth.
+    smooth: Vec<bool>,
+    report: MorphFitReport,
+}
+
 /// Fit one open-on-axis profile to the common representation.
 fn fit_keyframe(
     name: &'static str,
     source: &Profile,
     closing: (usize, f64),
-) -> Result<(Vec<Point2<f64>>, MorphFitReport), String> {
+) -> Result<FittedKeyframe, String> {
     let pieces = source.pieces();
     let table = ArcLength::new(pieces);
     let first = pieces.first().ok_or("empty profile")?;
@@ -381,14 +433,19 @@ fn fit_keyframe(
         points.extend(block.points.iter().skip(skip));
     }
     let max_deviation = blocks.iter().map(|b| b.error).fold(0.0, f64::max);
-    Ok((
+    let smooth = blocks[1..]
+        .iter()
+        .map(|b| matches!(b.start, EndCondition::Tangent(_)))
+        .collect();
+    Ok(FittedKeyframe {
         points,
-        MorphFitReport {
+        smooth,
+        report: MorphFitReport {
             model: name,
             max_deviation,
             creases,
         },
-    ))
+    })
 }
 
 /// Unknowns of one control point in the block least-squares problem.

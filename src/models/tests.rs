@@ -17,8 +17,23 @@ const CHECK_SAMPLES_PER_SPAN: usize = 128;
 /// curved pieces have radii of curvature below 20 units; straight pieces evaluate to
 /// |curvature| of rounding size (about 1e-12).
 const CURVED: f64 = 0.05;
+/// Fraction of the samples at each end of an open profile left out when checking that the
+/// interior stays off the axis (the ends lie on it by definition).
+const END_FRACTION: f64 = 0.005;
 /// Tangent turn (radians) above which a join is a crease (about 3 degrees).
 const CREASE: f64 = 0.05;
+/// Curvature below which every sample of a piece makes it straight: rounding of the curvature
+/// of a straight NURBS piece of size 1 (about 1e-13), with margin.
+const STRAIGHT_CURVATURE: f64 = 1e-9;
+/// Coordinate difference below which a straight piece is vertical or horizontal (the models
+/// write such pieces with equal coordinates, so the difference is exactly 0).
+const AXIS_ALIGNED: f64 = 1e-12;
+/// Distance bound for points of exact rational circles and straight lines: a few ulps of
+/// coordinates of size 1 (the rational evaluation rounds each of its few operations once).
+const EXACT: f64 = 1e-15;
+/// Bound on the chord error of the dense source samples (see [`SOURCE_SAMPLES_PER_SPAN`]),
+/// with margin: 1e-6.
+const SOURCE_CHORD_ERROR: f64 = 1e-6;
 
 fn signed_curvature(piece: &NurbsCurve, t: f64) -> f64 {
     let d = piece.derivatives(t);
@@ -68,12 +83,12 @@ fn features(profile: &Profile) -> Features {
         f.inflections += signs.windows(2).filter(|w| w[0] != w[1]).count();
         let (t0, t1) = piece.domain();
         let (a, b) = (piece.eval(t0), piece.eval(t1));
-        let straight = kappas.iter().all(|k| k.abs() < 1e-9);
+        let straight = kappas.iter().all(|k| k.abs() < STRAIGHT_CURVATURE);
         if straight {
             let d = b - a;
-            if d.x.abs() < 1e-12 {
+            if d.x.abs() < AXIS_ALIGNED {
                 f.cylinders += 1;
-            } else if d.y.abs() < 1e-12 {
+            } else if d.y.abs() < AXIS_ALIGNED {
                 f.disks += 1;
             } else {
                 f.cones += 1;
@@ -135,7 +150,7 @@ fn every_model_is_a_valid_profile_of_height_one_to_two() {
         );
         // Only the ends touch the axis.
         assert!(
-            min_interior_rho(&profile, CHECK_SAMPLES_PER_SPAN, 0.01) > 0.0,
+            min_interior_rho(&profile, CHECK_SAMPLES_PER_SPAN, END_FRACTION) > 0.0,
             "{name}"
         );
         assert!(
@@ -164,7 +179,7 @@ fn model_heights_match_their_documentation() {
         let top = pts.iter().map(|p| p.y).fold(f64::NEG_INFINITY, f64::max);
         let bottom = pts.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
         assert!(
-            (top - bottom - height).abs() < 1e-6,
+            (top - bottom - height).abs() < SOURCE_CHORD_ERROR,
             "{name}: {}",
             top - bottom
         );
@@ -201,24 +216,24 @@ fn analytic_models_are_exact() {
     let ring = model("ring").unwrap();
     for p in sample_profile(&ring, 97) {
         let r = (p - Point2::new(0.9, 0.6)).norm();
-        assert!((r - 0.6).abs() < 1e-15, "r = {r}");
+        assert!((r - 0.6).abs() < EXACT, "r = {r}");
     }
     let sphere = model("sphere").unwrap();
     for p in sample_profile(&sphere, 97) {
-        assert!(((p - Point2::new(0.0, 0.75)).norm() - 0.75).abs() < 1e-15);
+        assert!(((p - Point2::new(0.0, 0.75)).norm() - 0.75).abs() < EXACT);
     }
     // The cone's degree-2 slant is the straight line rho = 0.6 (1 - z / 1.5).
     let cone = model("cone").unwrap();
     assert_eq!(cone.pieces()[1].degree(), 2);
     for p in sample_profile(&cone, 50).iter().skip(1) {
         if p.y > 0.0 {
-            assert!((p.x - 0.6 * (1.0 - p.y / 1.5)).abs() < 1e-15, "{p}");
+            assert!((p.x - 0.6 * (1.0 - p.y / 1.5)).abs() < EXACT, "{p}");
         }
     }
     // Clockwise arcs (used for the cup's fillet) run the other way round.
     let cw = arc([0.0, 0.0], 1.0, 0.0, deg(-90.0)).unwrap();
     let mid = cw.eval(0.5 * (cw.domain().0 + cw.domain().1));
-    assert!((mid - Point2::new(0.5f64.sqrt(), -(0.5f64.sqrt()))).norm() < 1e-15);
+    assert!((mid - Point2::new(0.5f64.sqrt(), -(0.5f64.sqrt()))).norm() < EXACT);
 }
 
 #[test]
@@ -262,7 +277,7 @@ fn morph_keyframes_fit_their_sources() {
             .map(|p| distance_to_polyline(*p, &source))
             .fold(0.0, f64::max);
         assert!(
-            worst <= morph.fit_reports()[k].max_deviation + 1e-6,
+            worst <= morph.fit_reports()[k].max_deviation + SOURCE_CHORD_ERROR,
             "{name}: {worst}"
         );
         // Interior control points have rho > 0: the premise of the convex-hull argument.
@@ -305,7 +320,7 @@ fn morph_frames_are_valid_profiles_at_1000_frames() {
             None,
             "frame t = {t} crosses itself"
         );
-        assert!(min_interior_rho(&frame, 16, 0.005) > 0.0, "t = {t}");
+        assert!(min_interior_rho(&frame, 16, END_FRACTION) > 0.0, "t = {t}");
         // The allocation-reusing variant gives the same control points.
         morph.control_points_into(t, &mut points).unwrap();
         let flat: Vec<Point2<f64>> = frame
@@ -317,6 +332,10 @@ fn morph_frames_are_valid_profiles_at_1000_frames() {
         assert_eq!(flat, points);
     }
 }
+
+/// Control point difference allowed between t and t + 1 (or t - 1): wrapping t rounds it
+/// by an ulp of 1, which moves control points by about 1e-15.
+const WRAP_ROUNDING: f64 = 1e-12;
 
 /// Largest distance between corresponding points of two control point lists.
 fn max_gap(a: &[Point2<f64>], b: &[Point2<f64>]) -> f64 {
@@ -338,19 +357,30 @@ fn morph_interpolates_keyframes_wraps_and_moves_continuously() {
     morph.control_points_into(0.37, &mut a).unwrap();
     morph.control_points_into(1.37, &mut b).unwrap();
     let gap = max_gap(&a, &b);
-    assert!(gap < 1e-12, "{gap}");
+    assert!(gap < WRAP_ROUNDING, "{gap}");
     morph.control_points_into(-0.63, &mut b).unwrap();
     let gap = max_gap(&a, &b);
-    assert!(gap < 1e-12, "{gap}");
+    assert!(gap < WRAP_ROUNDING, "{gap}");
     // Lipschitz in t: the smootherstep blend moves a control point by at most
-    // 5 * 1.875 * |P_k - P_k+1| * dt (1.875 = max slope of smootherstep).
+    // 5 * 1.875 * max |P_k - P_k+1| * dt (1.875 = max slope of smootherstep, 5 keyframes).
+    let widest = (0..5)
+        .map(|k| {
+            max_gap(
+                morph.keyframe_points(k).unwrap(),
+                morph.keyframe_points((k + 1) % 5).unwrap(),
+            )
+        })
+        .fold(0.0, f64::max);
     let dt = 1e-4;
     for j in 0..200 {
         let t = j as f64 / 200.0;
         morph.control_points_into(t, &mut a).unwrap();
         morph.control_points_into(t + dt, &mut b).unwrap();
         let step = max_gap(&a, &b);
-        assert!(step < 5.0 * 1.875 * 2.5 * dt, "t = {t}: {step}");
+        assert!(
+            step <= 5.0 * 1.875 * widest * dt * (1.0 + 1e-9),
+            "t = {t}: {step}"
+        );
     }
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         assert!(matches!(
@@ -405,4 +435,74 @@ fn morph_frames_keep_their_pieces_apart() {
         );
     }
     println!("narrowest frame clearance {narrowest}");
+}
+
+#[test]
+fn every_model_and_morph_frames_build_biarc_trees() {
+    use crate::biarc::tree::BiarcTree;
+    for name in model_names() {
+        for eps in [1e-3, 1e-5] {
+            let tree = BiarcTree::build(&model(name).unwrap(), eps)
+                .unwrap_or_else(|e| panic!("{name} at eps {eps}: {e}"));
+            println!("{name} eps {eps}: {:?}", tree.stats());
+        }
+    }
+    let morph = Morph::shared().unwrap();
+    let mut tree = BiarcTree::build(&morph.frame(0.0).unwrap(), 1e-4).unwrap();
+    for j in 0..50 {
+        let t = (j as f64 + 0.5) / 50.0;
+        tree.rebuild(&morph.frame(t).unwrap(), 1e-4)
+            .unwrap_or_else(|e| panic!("morph@{t}: {e}"));
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Any finite t (wrapped into [0, 1)) gives a simple open profile whose interior stays off
+    /// the axis, and `morph@t` by name is the same frame.
+    #[test]
+    fn morph_at_any_finite_t_is_a_simple_profile(t in -10.0f64..10.0) {
+        let frame = morph::morph(t).unwrap();
+        proptest::prop_assert_eq!(frame.kind(), ProfileKind::OpenOnAxis);
+        proptest::prop_assert_eq!(polyline_self_intersection(&frame, 16), None);
+        proptest::prop_assert!(min_interior_rho(&frame, 16, END_FRACTION) > 0.0);
+        let named = model(&format!("morph@{t}")).unwrap();
+        proptest::prop_assert_eq!(named.pieces(), frame.pieces());
+    }
+}
+/// Tangent turn (radians) allowed at a frame's block joint that is smooth in both keyframes
+/// being blended: rounding of the handle alignment (about 1e-13 measured).
+const FRAME_G1_TURN: f64 = 1e-9;
+
+#[test]
+fn morph_frames_are_g1_where_both_keyframes_are() {
+    let morph = Morph::shared().unwrap();
+    let keyframes: Vec<Profile> = (0..5)
+        .map(|k| morph.frame(k as f64 / 5.0).unwrap())
+        .collect();
+    let turn = |p: &Profile, i: usize| {
+        let (a, b) = (&p.pieces()[i], &p.pieces()[i + 1]);
+        let u = unit_tangent(a, a.domain().1);
+        let v = unit_tangent(b, b.domain().0);
+        u.perp(&v).atan2(u.dot(&v)).abs()
+    };
+    let mut checked = 0;
+    for j in 0..500 {
+        let t = (j as f64 + 0.5) / 500.0;
+        let frame = morph.frame(t).unwrap();
+        let k = (t * 5.0).floor() as usize;
+        for i in 0..MORPH_BLOCKS - 1 {
+            let smooth = |p: &Profile| turn(p, i) < FRAME_G1_TURN;
+            if smooth(&keyframes[k]) && smooth(&keyframes[(k + 1) % 5]) {
+                checked += 1;
+                assert!(
+                    turn(&frame, i) < FRAME_G1_TURN,
+                    "t = {t}, joint {i}: {}",
+                    turn(&frame, i)
+                );
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked}");
 }

@@ -1,5 +1,6 @@
 //! `revdist export NAME --toml OUT`: write a profile as a TOML profile file.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use revdist::profile_file::to_toml_string;
@@ -19,6 +20,6 @@ pub struct Args {
 pub fn run(args: Args) -> CmdResult {
     let profile = load_profile(&args.profile)?;
     write_file(&args.toml, &to_toml_string(&profile))?;
-    println!("wrote {}", args.toml.display());
+    writeln!(std::io::stdout(), "wrote {}", args.toml.display())?;
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! `revdist figures --out DIR`: draw every built-in model into `DIR/profiles/<name>.svg`,
 //! an overview `DIR/profiles.svg`, and frames of the deformable model M_t `DIR/morph.svg`.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use revdist::models::{self, model_names};
@@ -63,10 +64,11 @@ pub fn run(args: Args) -> CmdResult {
         &cell,
     );
     write_file(&args.out.join("morph.svg"), &morph)?;
-    println!(
+    writeln!(
+        std::io::stdout(),
         "wrote {} profile drawings, profiles.svg and morph.svg to {}",
         profiles.len(),
         args.out.display()
-    );
+    )?;
     Ok(())
 }

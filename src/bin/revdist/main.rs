@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod distance;
 mod export;
 mod figures;
 mod input;
@@ -32,6 +33,8 @@ enum Command {
     Export(export::Args),
     /// Draw every built-in model and frames of the deformable model into a directory.
     Figures(figures::Args),
+    /// Minimum distance between two posed solids (one query, or JSON lines with --batch).
+    Distance(distance::Args),
 }
 
 fn main() -> ExitCode {
@@ -41,6 +44,7 @@ fn main() -> ExitCode {
         Command::Profile(args) => profile::run(args),
         Command::Export(args) => export::run(args),
         Command::Figures(args) => figures::run(args),
+        Command::Distance(args) => distance::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

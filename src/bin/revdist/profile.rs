@@ -1,5 +1,6 @@
 //! `revdist profile NAME|FILE --svg OUT`: draw a profile and its control polygon.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use revdist::svg::{profiles_svg, ProfileSvgOptions};
@@ -30,6 +31,6 @@ pub fn run(args: Args) -> CmdResult {
         ..ProfileSvgOptions::default()
     };
     write_file(&args.svg, &profiles_svg(&[&profile], &options))?;
-    println!("wrote {}", args.svg.display());
+    writeln!(std::io::stdout(), "wrote {}", args.svg.display())?;
     Ok(())
 }

@@ -1,0 +1,29 @@
+//! Minimum distance between two posed solids of revolution (Son et al. 2020, sections 3
+//! and 4.2; Johnson and Cohen 1997 for the lower/upper-bound paradigm and anytime queries).
+//!
+//! * [`patch`], [`patch_distance`]: toroidal patches and their exact pairwise distance,
+//!   with the kernels [`planar`] (coaxial case) and [`sweep`] (critical points along a
+//!   circle);
+//! * [`tree`]: the query's view of a solid's bounding hierarchy;
+//! * [`bounds`]: provably valid node-pair lower bounds;
+//! * [`traverse`]: Algorithm 2 (best-first over node pairs) with an anytime budget;
+//! * [`containment`]: point-in-solid tests (solids, not surfaces);
+//! * [`refine`]: witness refinement on the exact NURBS surfaces;
+//! * [`distance`]: the query itself, with frame coherence.
+
+pub mod bounds;
+pub mod containment;
+pub mod distance;
+pub mod patch;
+pub mod patch_distance;
+pub mod planar;
+pub mod refine;
+pub mod sweep;
+pub mod traverse;
+pub mod tree;
+
+pub use distance::{distance, distance_cached, Distance, QueryCache, QueryOptions};
+pub use patch::{Patch, ProfileArc};
+pub use patch_distance::{patch_distance, PatchDistance};
+pub use traverse::{Budget, TraversalStats};
+pub use tree::QueryTree;

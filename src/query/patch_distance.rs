@@ -1,0 +1,927 @@
+//! Exact minimum distance between two revolved profile pieces in arbitrary relative pose
+//! (paper section 3: "the distance between two toroidal patches is l +- r1 +- r2").
+//!
+//! The minimum of the distance between two compact surfaces with boundary is attained
+//! (a) at an interior common normal, (b) at a boundary parallel of one patch against the
+//! interior of the other, (c) between two boundary parallels, or (d) at an intersection
+//! point (distance 0). We enumerate a superset of every case and measure each candidate as
+//! the exact distance between two points that lie on the patches, so extra candidates never
+//! make the answer too small, and completeness makes it exact:
+//!
+//! * (a) toroidal patch vs anything: a common normal meets the major circle `M` of the
+//!   toroidal patch at a right angle, so its foot `P` on `M` is a critical point of the
+//!   distance from `M(theta)` to the other patch's core (profile-circle centre or cone
+//!   line, both mirrored branches); [`sweep::critical_angles`] finds those angles. From `P`
+//!   the critical feet `q` on the other patch give the line, and the toroidal patch's
+//!   points on that line are `P +- r u` (the signs l +- r1 +- r2 of the paper), kept when
+//!   their arc angle is in range (inclusive).
+//! * (a) cone vs cone (two straight pieces): normals of a cone at revolution angle theta
+//!   are all parallel to `n_rho e_rho(theta) + n_z e_z`; the Gauss image is a circle of
+//!   latitude. A common normal direction lies on both latitude circles (at most two points
+//!   per sign choice); the two generators are then both orthogonal to it and their closest
+//!   points give the normal. Parallel axes and flat disks are handled explicitly.
+//! * (b) a boundary parallel `G` against a patch: critical points of the distance from
+//!   `G(theta)` to the patch's core, then the critical feet; and the level sets where `G`
+//!   crosses the extended surface, measured with the exact point-to-patch distance (this
+//!   finds boundary/surface crossings, i.e. case (d) whenever the intersection curve
+//!   reaches a boundary). A parallel of radius 0 (a point on the axis) uses the exact
+//!   point-to-patch distance directly.
+//! * (c) parallel vs parallel: critical points of the distance from one to the other.
+//! * Coaxial patches reduce exactly to the planar distance of the profile pieces.
+//!
+//! Interior intersection loops that touch no boundary are reported through
+//! [`PatchDistance::interior_pairs`]: at the deepest point of such a loop the common normal
+//! has both points inside the other solid, which the caller (who knows the solids) tests.
+
+use super::patch::{e_rho, lift, Core, Patch, ProfileArc};
+use super::planar;
+use super::sweep::{critical_angles, level_angles, ParamCircle, RadialField};
+use nalgebra::{Isometry3, Point2, Point3, Vector3};
+
+/// Relative tolerance for deciding that two axes are the same line (coaxial solids) or
+/// parallel; relative to the size of the configuration. Round-off in composing a pose is
+/// ~1e-15; 1e-12 leaves margin and is far below any eps used by trees.
+pub const AXIS_TOLERANCE: f64 = 1e-12;
+
+/// Result of a patch-pair distance: the distance and the closest points (frame of patch A).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchDistance {
+    pub distance: f64,
+    pub point_a: Point3<f64>,
+    pub point_b: Point3<f64>,
+    /// Interior common normals (point on A, point on B), for penetration tests.
+    pub interior_pairs: Vec<(Point3<f64>, Point3<f64>)>,
+}
+
+struct Best {
+    d: f64,
+    p: Point3<f64>,
+    q: Point3<f64>,
+}
+
+impl Best {
+    fn consider(&mut self, p: Point3<f64>, q: Point3<f64>) {
+        let d = (p - q).norm();
+        if d < self.d {
+            *self = Best { d, p, q };
+        }
+    }
+}
+
+/// Options of the patch distance (for testing the Gauss-map restriction and the like).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PatchOptions {
+    /// Skip the interior-interior candidates (tests only).
+    pub skip_interior: bool,
+}
+
+/// Exact distance between patch `a` (frame A) and patch `b` placed by `pos_ab` (a point
+/// `x` of B's frame is at `pos_ab * x` in A's frame).
+pub fn patch_distance(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> PatchDistance {
+    patch_distance_with(a, b, pos_ab, PatchOptions::default())
+}
+
+/// [`patch_distance`] with options.
+pub fn patch_distance_with(
+    a: &Patch,
+    b: &Patch,
+    pos_ab: &Isometry3<f64>,
+    opts: PatchOptions,
+) -> PatchDistance {
+    if let Some(r) = coaxial(a, b, pos_ab) {
+        return r;
+    }
+    let pos_ba = pos_ab.inverse();
+    let mut best = Best {
+        d: f64::INFINITY,
+        p: Point3::origin(),
+        q: Point3::origin(),
+    };
+    let mut pairs = Vec::new();
+    if !opts.skip_interior {
+        match (a.arc, b.arc) {
+            (ProfileArc::Arc { .. }, _) => {
+                interior_via_core(a, b, pos_ab, &mut |p, q| {
+                    best.consider(p, q);
+                    pairs.push((p, q));
+                });
+            }
+            (_, ProfileArc::Arc { .. }) => {
+                interior_via_core(b, a, &pos_ba, &mut |q, p| {
+                    let (p, q) = (pos_ab * p, pos_ab * q);
+                    best.consider(p, q);
+                    pairs.push((p, q));
+                });
+            }
+            _ => cone_cone(a, b, pos_ab, &mut |p, q| {
+                best.consider(p, q);
+                pairs.push((p, q));
+            }),
+        }
+    }
+    // (b) boundary parallels of B against A, and of A against B.
+    boundary_vs_patch(b, a, pos_ab, &mut |q, p| best.consider(p, q));
+    boundary_vs_patch(a, b, &pos_ba, &mut |p, q| {
+        best.consider(pos_ab * p, pos_ab * q);
+    });
+    // (c) parallel pairs.
+    for ea in a.boundary() {
+        for eb in b.boundary() {
+            parallel_pair(ea, eb, pos_ab, &mut |p, q| best.consider(p, q));
+        }
+    }
+    // (d) intersection loops inside both patches: sign changes of the other surface's
+    // implicit function along meridians (through every interior candidate and four
+    // fixed ones).
+    if best.d > 0.0 {
+        let mut th_a: Vec<f64> = FIXED_MERIDIANS.to_vec();
+        let mut th_b: Vec<f64> = FIXED_MERIDIANS.to_vec();
+        for (p, q) in &pairs {
+            th_a.push(p.y.atan2(p.x));
+            let qb = pos_ba * q;
+            th_b.push(qb.y.atan2(qb.x));
+        }
+        meridian_crossings(b, a, pos_ab, &th_b, &mut |q, p| best.consider(p, q));
+        meridian_crossings(a, b, &pos_ba, &th_a, &mut |p, q| {
+            best.consider(pos_ab * p, pos_ab * q)
+        });
+    }
+    PatchDistance {
+        distance: best.d,
+        point_a: best.p,
+        point_b: best.q,
+        interior_pairs: pairs,
+    }
+}
+
+/// Meridians always scanned for crossings (an intersection loop that winds around a
+/// patch's axis meets every meridian of that patch).
+const FIXED_MERIDIANS: [f64; 4] = [
+    0.0,
+    std::f64::consts::FRAC_PI_2,
+    std::f64::consts::PI,
+    3.0 * std::f64::consts::FRAC_PI_2,
+];
+
+/// Samples along a meridian for the crossing scan.
+const MERIDIAN_SAMPLES: usize = 32;
+
+/// Implicit function of the extended surface of `o` at `x` (o's frame): zero exactly on
+/// the revolved full circle (or line) of the piece, both mirror halves.
+fn implicit(o: &Patch, x: &Point3<f64>) -> f64 {
+    let rho = x.x.hypot(x.y);
+    match o.core() {
+        Core::Circle {
+            r_major,
+            z,
+            r_minor,
+        } => {
+            let d1 = (rho - r_major).hypot(x.z - z) - r_minor;
+            if r_major == 0.0 {
+                return d1; // both halves coincide (sphere)
+            }
+            d1 * ((rho + r_major).hypot(x.z - z) - r_minor)
+        }
+        Core::Line { n, c } => {
+            let h1 = n.x * rho + n.y * x.z - c;
+            if n.x == 0.0 {
+                return h1; // flat annulus: both halves coincide
+            }
+            h1 * (-n.x * rho + n.y * x.z - c)
+        }
+    }
+}
+
+/// Points of `g`'s meridians (at angles `thetas`, frame G) where the implicit function of
+/// `o` changes sign, each emitted with its closest point on `o` (O's frame): a crossing of
+/// the two patches when that distance is zero. `pos_og` places G in O.
+fn meridian_crossings(
+    g: &Patch,
+    o: &Patch,
+    pos_og: &Isometry3<f64>,
+    thetas: &[f64],
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let n = MERIDIAN_SAMPLES;
+    for &th in thetas {
+        let e = e_rho(th);
+        let at = |s: f64| pos_og * lift(g.arc.point_at(s), &e);
+        let mut prev = implicit(o, &at(0.0));
+        for i in 1..=n {
+            let (s0, s1) = ((i - 1) as f64 / n as f64, i as f64 / n as f64);
+            let cur = implicit(o, &at(s1));
+            if prev == 0.0 || prev.signum() != cur.signum() {
+                let (mut lo, mut hi, mut flo) = (s0, s1, prev);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    let fm = implicit(o, &at(mid));
+                    if fm == 0.0 {
+                        lo = mid;
+                        hi = mid;
+                        break;
+                    }
+                    if fm.signum() == flo.signum() {
+                        lo = mid;
+                        flo = fm;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                let x = at(0.5 * (lo + hi));
+                let (_, c) = o.point_distance(&x);
+                emit(x, c);
+            }
+            prev = cur;
+        }
+    }
+}
+
+/// Coaxial solids: the distance is the planar distance of the pieces.
+fn coaxial(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> Option<PatchDistance> {
+    let axis = pos_ab.rotation * Vector3::z();
+    let t = pos_ab.translation.vector;
+    let scale = 1.0 + t.norm();
+    if axis.x.hypot(axis.y) > AXIS_TOLERANCE || t.x.hypot(t.y) > AXIS_TOLERANCE * scale {
+        return None;
+    }
+    let sign = axis.z.signum();
+    let bm = b.arc.mapped_z(sign, t.z);
+    let (d, pa, pb) = planar::piece_distance(&a.arc, &bm);
+    let e = Vector3::x();
+    Some(PatchDistance {
+        distance: d,
+        point_a: lift(pa, &e),
+        point_b: lift(pb, &e),
+        interior_pairs: Vec::new(),
+    })
+}
+
+/// Field of the distance to the core of `patch` for mirror branch `s` (see `sweep`).
+fn core_field(patch: &Patch, s: f64) -> RadialField {
+    match patch.core() {
+        Core::Circle { r_major, z, .. } => RadialField {
+            a: -2.0 * s * r_major,
+            b: 1.0,
+            c1: -2.0 * z,
+            c2: 1.0,
+        },
+        Core::Line { n, .. } => RadialField {
+            a: s * n.x,
+            b: 0.0,
+            c1: n.y,
+            c2: 0.0,
+        },
+    }
+}
+
+/// Interior common normals with `t` a toroidal patch (frame T) and `o` any patch placed in
+/// T's frame by `pos_to`. Emits (point on t, point on o) in T's frame.
+fn interior_via_core(
+    t: &Patch,
+    o: &Patch,
+    pos_to: &Isometry3<f64>,
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let Core::Circle { r_major, z, .. } = t.core() else {
+        return;
+    };
+    let pos_ot = pos_to.inverse();
+    // Major circle of t in o's frame.
+    let major = ParamCircle::parallel(r_major, z, &pos_ot);
+    let mut thetas = Vec::with_capacity(32);
+    if r_major == 0.0 {
+        thetas.push(0.0);
+    } else {
+        for s in [1.0, -1.0] {
+            critical_angles(&major, &core_field(o, s), &mut thetas);
+        }
+    }
+    let mut feet = Vec::with_capacity(8);
+    let mut pts = Vec::with_capacity(4);
+    for &th in &thetas {
+        let core_t = lift(Point2::new(r_major, z), &e_rho(th)); // in t's frame
+        let core_o = pos_ot * core_t;
+        feet.clear();
+        o.critical_feet(&core_o, &mut feet);
+        if r_major == 0.0 {
+            sphere_centre_feet(o, &core_o, &mut feet);
+        }
+        for f in &feet {
+            let q = pos_to * f;
+            let w = q - core_t;
+            let n = w.norm();
+            let dir = if n > 1e-300 {
+                w / n
+            } else {
+                // q on the major circle: the common normal is the surface normal of o at q.
+                pos_to.rotation * surface_normal(o, f)
+            };
+            pts.clear();
+            t.points_on_normal_line(&core_t, &dir, &mut pts);
+            for p in &pts {
+                emit(*p, q);
+            }
+        }
+    }
+}
+
+/// Feet on `o` from a point `x` (o's frame) on o's axis, for a sphere-like core point:
+/// the continuum of meridian planes is sampled so the other patch's range test can pass.
+fn sphere_centre_feet(o: &Patch, x: &Point3<f64>, feet: &mut Vec<Point3<f64>>) {
+    if x.x.hypot(x.y) > 1e-13 * (1.0 + x.coords.norm()) {
+        return;
+    }
+    let base: Vec<Point3<f64>> = feet.clone();
+    for k in 1..16 {
+        let th = k as f64 * std::f64::consts::TAU / 16.0;
+        let rot = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), th);
+        feet.extend(base.iter().map(|p| rot * p));
+    }
+    let _ = o;
+}
+
+/// Unit surface normal (from the core side) of patch `o` at its point `f` (o's frame).
+fn surface_normal(o: &Patch, f: &Point3<f64>) -> Vector3<f64> {
+    let rho = f.x.hypot(f.y);
+    let e = if rho > 0.0 {
+        Vector3::new(f.x / rho, f.y / rho, 0.0)
+    } else {
+        Vector3::x()
+    };
+    let n2 = o.planar_normal(Point2::new(rho, f.z));
+    e * n2.x + Vector3::z() * n2.y
+}
+
+/// Boundary parallels of `g` (frame G) against patch `o` (frame O); `pos_og` places G in
+/// O. Emits (point on g's parallel, point on o) in O's frame.
+fn boundary_vs_patch(
+    g: &Patch,
+    o: &Patch,
+    pos_og: &Isometry3<f64>,
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let mut thetas = Vec::with_capacity(48);
+    let mut feet = Vec::with_capacity(8);
+    for e in g.boundary() {
+        if e.x.abs() <= 1e-300 {
+            let x = pos_og * Point3::new(0.0, 0.0, e.y);
+            let (_, c) = o.point_distance(&x);
+            emit(x, c);
+            feet.clear();
+            o.critical_feet(&x, &mut feet);
+            for f in &feet {
+                emit(x, *f);
+            }
+            continue;
+        }
+        let circle = ParamCircle::parallel(e.x, e.y, pos_og);
+        thetas.clear();
+        for s in [1.0, -1.0] {
+            critical_angles(&circle, &core_field(o, s), &mut thetas);
+        }
+        // Crossings of the extended surface: F = level.
+        match o.core() {
+            Core::Circle {
+                r_major,
+                z,
+                r_minor,
+                ..
+            } => {
+                for s in [1.0, -1.0] {
+                    let level = r_minor * r_minor - r_major * r_major - z * z;
+                    level_angles(&circle, &core_field(o, s), level, &mut thetas);
+                }
+            }
+            Core::Line { c, .. } => {
+                for s in [1.0, -1.0] {
+                    level_angles(&circle, &core_field(o, s), c, &mut thetas);
+                }
+            }
+        }
+        for &th in &thetas {
+            let x = circle.point(th);
+            let (_, c) = o.point_distance(&x);
+            emit(x, c);
+            feet.clear();
+            o.critical_feet(&x, &mut feet);
+            for f in &feet {
+                emit(x, *f);
+            }
+        }
+    }
+}
+
+/// Closest points between the parallel `ea` of A and the parallel `eb` of B.
+fn parallel_pair(
+    ea: Point2<f64>,
+    eb: Point2<f64>,
+    pos_ab: &Isometry3<f64>,
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let closest_on_a = |x: &Point3<f64>| {
+        let rho = x.x.hypot(x.y);
+        let e = if rho > 0.0 {
+            Vector3::new(x.x / rho, x.y / rho, 0.0)
+        } else {
+            Vector3::x()
+        };
+        lift(ea, &e)
+    };
+    if eb.x.abs() <= 1e-300 {
+        let x = pos_ab * Point3::new(0.0, 0.0, eb.y);
+        emit(closest_on_a(&x), x);
+        return;
+    }
+    let circle = ParamCircle::parallel(eb.x, eb.y, pos_ab);
+    if ea.x.abs() <= 1e-300 {
+        // A's parallel is a point: closest point of B's circle to it.
+        let pa = Point3::new(0.0, 0.0, ea.y);
+        let pos_ba = pos_ab.inverse();
+        let local = pos_ba * pa;
+        let rho = local.x.hypot(local.y);
+        let e = if rho > 0.0 {
+            Vector3::new(local.x / rho, local.y / rho, 0.0)
+        } else {
+            Vector3::x()
+        };
+        emit(pa, pos_ab * lift(eb, &e));
+        return;
+    }
+    let field = RadialField {
+        a: -2.0 * ea.x,
+        b: 1.0,
+        c1: -2.0 * ea.y,
+        c2: 1.0,
+    };
+    let mut thetas = Vec::with_capacity(24);
+    critical_angles(&circle, &field, &mut thetas);
+    for &th in &thetas {
+        let x = circle.point(th);
+        emit(closest_on_a(&x), x);
+    }
+}
+
+/// Interior common normals of two straight pieces (cones, cylinders, annuli) via their
+/// Gauss images (circles of latitude). Emits (point on a, point on b) in A's frame.
+fn cone_cone(
+    a: &Patch,
+    b: &Patch,
+    pos_ab: &Isometry3<f64>,
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let (ProfileArc::Segment { start: a0, end: a1 }, ProfileArc::Segment { start: b0, end: b1 }) =
+        (a.arc, b.arc)
+    else {
+        return;
+    };
+    let Core::Line { n: na, .. } = a.core() else {
+        return;
+    };
+    let Core::Line { n: nb, .. } = b.core() else {
+        return;
+    };
+    let ez = Vector3::z();
+    let axis_b = pos_ab.rotation * ez;
+    let k = axis_b.z;
+    // Generator of a straight piece at radial direction e (frame-local), as a 3-D segment.
+    let gen = |p0: Point2<f64>, p1: Point2<f64>, e: &Vector3<f64>| (lift(p0, e), lift(p1, e));
+    let mut try_dir = |dir: Vector3<f64>| {
+        // Radial directions where a's (resp. b's) normal is +-dir.
+        let ea = radial_for_normal(na, &dir);
+        let dir_b = pos_ab.inverse_transform_vector(&dir);
+        let eb = radial_for_normal(nb, &dir_b);
+        for e1 in ea.iter().flatten() {
+            for e2 in eb.iter().flatten() {
+                let (p0, p1) = gen(a0, a1, e1);
+                let (q0, q1) = gen(b0, b1, e2);
+                let (q0, q1) = (pos_ab * q0, pos_ab * q1);
+                segment_common_normal(p0, p1, q0, q1, &dir, emit);
+            }
+        }
+    };
+    if 1.0 - k.abs() > AXIS_TOLERANCE {
+        // Latitudes: dir . ez = sa * na.y, dir . axis_b = sb * nb.y.
+        let m = ez.cross(&axis_b);
+        let det = 1.0 - k * k;
+        for sa in [1.0, -1.0] {
+            for sb in [1.0, -1.0] {
+                let (al, be) = (sa * na.y, sb * nb.y);
+                let lam = (al - be * k) / det;
+                let mu = (be - al * k) / det;
+                let base = ez * lam + axis_b * mu;
+                let rem = 1.0 - base.norm_squared();
+                if rem < -1e-12 {
+                    continue;
+                }
+                let nu = rem.max(0.0).sqrt() / det.sqrt();
+                for sn in [1.0, -1.0] {
+                    try_dir(base + m * (sn * nu));
+                    if nu == 0.0 {
+                        break;
+                    }
+                }
+            }
+        }
+    } else {
+        // Parallel axes: common normals lie in the plane of both axes (or are the axis
+        // direction for two flat annuli, handled by the annulus overlap below).
+        let off = pos_ab.translation.vector;
+        let w = Vector3::new(off.x, off.y, 0.0);
+        if w.norm() > 0.0 {
+            let w = w.normalize();
+            for sw in [1.0, -1.0] {
+                for sz in [1.0, -1.0] {
+                    let dir = w * (sw * na.x) + ez * (sz * na.y);
+                    if dir.norm() > 0.0 {
+                        try_dir(dir.normalize());
+                    }
+                }
+            }
+        }
+        if na.x.abs() < 1e-15 && nb.x.abs() < 1e-15 {
+            annulus_overlap(a0, a1, b0, b1, pos_ab, emit);
+        }
+    }
+    // A flat annulus of one piece against a generator parallel to its plane.
+    if na.x.abs() < 1e-15 {
+        disk_vs_generators(a0, a1, b0, b1, pos_ab, emit);
+    }
+    if nb.x.abs() < 1e-15 {
+        let pos_ba = pos_ab.inverse();
+        disk_vs_generators(b0, b1, a0, a1, &pos_ba, &mut |q, p| {
+            emit(pos_ab * p, pos_ab * q)
+        });
+    }
+}
+
+/// Radial directions `e` (horizontal unit vectors) where the normal line of a straight piece
+/// with planar normal `n` is parallel to `dir` (frame-local); none for flat annuli.
+fn radial_for_normal(n: nalgebra::Vector2<f64>, dir: &Vector3<f64>) -> [Option<Vector3<f64>>; 2] {
+    let mut out = [None, None];
+    if n.x.abs() < 1e-15 {
+        return out;
+    }
+    for (i, s) in [1.0, -1.0].into_iter().enumerate() {
+        // s * dir = n.x e + n.y ez  =>  e = (s dir - n.y ez) / n.x
+        if (s * dir.z - n.y).abs() > 1e-9 {
+            continue;
+        }
+        let e = Vector3::new(s * dir.x / n.x, s * dir.y / n.x, 0.0);
+        let en = e.norm();
+        if en > 0.0 {
+            out[i] = Some(e / en);
+        }
+    }
+    out
+}
+
+/// Closest points of two segments when both are interior and the connecting vector is
+/// parallel to `dir`; for parallel segments, the middle of their overlap.
+fn segment_common_normal(
+    p0: Point3<f64>,
+    p1: Point3<f64>,
+    q0: Point3<f64>,
+    q1: Point3<f64>,
+    dir: &Vector3<f64>,
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
+    let (a, e, f) = (d1.dot(&d1), d2.dot(&d2), d2.dot(&r));
+    let (b, c) = (d1.dot(&d2), d1.dot(&r));
+    let den = a * e - b * b;
+    if den > 1e-14 * a * e {
+        let s = (b * f - c * e) / den;
+        let t = (a * f - b * c) / den;
+        if (-1e-9..=1.0 + 1e-9).contains(&s) && (-1e-9..=1.0 + 1e-9).contains(&t) {
+            emit(p0 + d1 * s.clamp(0.0, 1.0), q0 + d2 * t.clamp(0.0, 1.0));
+        }
+    } else if a > 0.0 {
+        // Parallel generators: offset orthogonal to the lines must be parallel to dir.
+        let u = d1 / a.sqrt();
+        let (t0, t1) = ((q0 - p0).dot(&u), (q1 - p0).dot(&u));
+        let (lo, hi) = (t0.min(t1).max(0.0), t0.max(t1).min(a.sqrt()));
+        if lo <= hi {
+            let tm = 0.5 * (lo + hi);
+            let p = p0 + u * tm;
+            let s = if (t1 - t0).abs() > 0.0 {
+                (tm - t0) / (t1 - t0)
+            } else {
+                0.0
+            };
+            let q = q0 + d2 * s.clamp(0.0, 1.0);
+            let _ = dir;
+            emit(p, q);
+        }
+    }
+}
+
+/// Two flat annuli with parallel axes: a point in the overlap of their projections.
+fn annulus_overlap(
+    a0: Point2<f64>,
+    a1: Point2<f64>,
+    b0: Point2<f64>,
+    b1: Point2<f64>,
+    pos_ab: &Isometry3<f64>,
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let (ra0, ra1) = (a0.x.min(a1.x), a0.x.max(a1.x));
+    let (rb0, rb1) = (b0.x.min(b1.x), b0.x.max(b1.x));
+    let cb = pos_ab * Point3::new(0.0, 0.0, b0.y);
+    let w = nalgebra::Vector2::new(cb.x, cb.y);
+    let d = w.norm();
+    let u = if d > 0.0 {
+        w / d
+    } else {
+        nalgebra::Vector2::x()
+    };
+    // Points on the line of centres: x = t u, |x| = |t|, |x - w| = |t - d|.
+    let cands = [
+        ra0,
+        ra1,
+        -ra0,
+        -ra1,
+        d + rb0,
+        d - rb0,
+        d + rb1,
+        d - rb1,
+        0.5 * d,
+    ];
+    for t in cands {
+        let ta = t.abs();
+        let tb = (t - d).abs();
+        if ta >= ra0 - 1e-12 && ta <= ra1 + 1e-12 && tb >= rb0 - 1e-12 && tb <= rb1 + 1e-12 {
+            let p = Point3::new(t * u.x, t * u.y, a0.y);
+            let q = Point3::new(t * u.x, t * u.y, cb.z);
+            emit(p, q);
+            return;
+        }
+    }
+}
+
+/// A flat annulus `(a0, a1)` (frame A, horizontal) against the generators of the straight
+/// piece `(b0, b1)` whose normal is the annulus normal: such a generator is parallel to the
+/// annulus plane, so each of its points over the annulus is on a common normal.
+/// Emits (point on annulus, point on generator) in A's frame.
+fn disk_vs_generators(
+    a0: Point2<f64>,
+    a1: Point2<f64>,
+    b0: Point2<f64>,
+    b1: Point2<f64>,
+    pos_ab: &Isometry3<f64>,
+    emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
+) {
+    let (ra0, ra1) = (a0.x.min(a1.x), a0.x.max(a1.x));
+    let db = b1 - b0;
+    let nb = nalgebra::Vector2::new(-db.y, db.x).normalize();
+    let ez_b = pos_ab.inverse_transform_vector(&Vector3::z());
+    for e in radial_for_normal(nb, &ez_b).iter().flatten() {
+        let (q0, q1) = (pos_ab * lift(b0, e), pos_ab * lift(b1, e));
+        let d = q1 - q0;
+        let (p0h, dh) = (
+            nalgebra::Vector2::new(q0.x, q0.y),
+            nalgebra::Vector2::new(d.x, d.y),
+        );
+        let a2 = dh.norm_squared();
+        let tmin = if a2 > 0.0 {
+            (-p0h.dot(&dh) / a2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let mut ts = vec![tmin, 0.0, 1.0, 0.5];
+        // Radius crossings ra0, ra1 along the segment.
+        for rr in [ra0, ra1] {
+            let (qa, qb, qc) = (a2, 2.0 * p0h.dot(&dh), p0h.norm_squared() - rr * rr);
+            let disc = qb * qb - 4.0 * qa * qc;
+            if qa > 0.0 && disc >= 0.0 {
+                ts.push((-qb - disc.sqrt()) / (2.0 * qa));
+                ts.push((-qb + disc.sqrt()) / (2.0 * qa));
+            }
+        }
+        for t in ts {
+            if !(0.0..=1.0).contains(&t) {
+                continue;
+            }
+            let x = q0 + d * t;
+            let r = x.x.hypot(x.y);
+            if r >= ra0 * (1.0 - 1e-12) && r <= ra1 * (1.0 + 1e-12) + 1e-300 {
+                emit(Point3::new(x.x, x.y, a0.y), x);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Translation3, UnitQuaternion};
+    use std::f64::consts::{PI, TAU};
+
+    pub(crate) struct Rng(u64);
+    impl Rng {
+        pub(crate) fn f(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Random piece in the half-plane rho >= 0.
+    fn random_piece(rng: &mut Rng) -> ProfileArc {
+        loop {
+            let p = match (rng.f() * 5.0) as u32 {
+                0 => ProfileArc::Segment {
+                    start: Point2::new(rng.f(), rng.f() - 0.5),
+                    end: Point2::new(rng.f(), rng.f() - 0.5),
+                },
+                1 => {
+                    // flat annulus or disk
+                    let z = rng.f() - 0.5;
+                    let r0 = if rng.f() < 0.5 { 0.0 } else { rng.f() * 0.5 };
+                    ProfileArc::Segment {
+                        start: Point2::new(r0, z),
+                        end: Point2::new(r0 + 0.2 + rng.f() * 0.5, z),
+                    }
+                }
+                2 => {
+                    // sphere-like: centre on the axis
+                    let r = 0.2 + rng.f() * 0.5;
+                    let a = -PI / 2.0 + rng.f() * PI * 0.5;
+                    ProfileArc::Arc {
+                        center: Point2::new(0.0, rng.f() - 0.5),
+                        radius: r,
+                        phi_start: a,
+                        sweep: rng.f() * (PI / 2.0 - a),
+                    }
+                }
+                _ => ProfileArc::Arc {
+                    center: Point2::new(rng.f() * 1.2 - 0.2, rng.f() - 0.5),
+                    radius: 0.05 + rng.f() * 0.5,
+                    phi_start: rng.f() * TAU,
+                    sweep: (rng.f() - 0.5) * 3.0,
+                },
+            };
+            if p.length() > 1e-3 && (0..=50).all(|i| p.point_at(i as f64 / 50.0).x >= 0.0) {
+                return p;
+            }
+        }
+    }
+
+    fn random_pose(rng: &mut Rng, spread: f64) -> Isometry3<f64> {
+        let axis = Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
+        let rot = UnitQuaternion::from_scaled_axis(axis * 6.0);
+        let t = Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5) * spread;
+        Isometry3::from_parts(Translation3::from(t), rot)
+    }
+
+    fn surface_point(p: &Patch, s: f64, th: f64) -> Point3<f64> {
+        lift(p.arc.point_at(s.clamp(0.0, 1.0)), &e_rho(th))
+    }
+
+    /// Reference: grid over B (frame B) measured exactly against A, refined by pattern
+    /// search; and the same with roles swapped.
+    fn reference(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> f64 {
+        let one_side = |a: &Patch, b: &Patch, pos: &Isometry3<f64>| {
+            let pos_inv = pos.inverse();
+            let f = |s: f64, th: f64| {
+                let x = pos * surface_point(b, s, th);
+                a.point_distance(&x).0
+            };
+            let (ns, nt) = (24, 64);
+            let mut cand = Vec::new();
+            for i in 0..=ns {
+                for j in 0..nt {
+                    let (s, th) = (i as f64 / ns as f64, j as f64 * TAU / nt as f64);
+                    cand.push((f(s, th), s, th));
+                }
+            }
+            cand.sort_by(|x, y| x.0.partial_cmp(&y.0).unwrap());
+            let mut best = f64::INFINITY;
+            for &(mut v, mut s, mut th) in cand.iter().take(6) {
+                let (mut hs, mut ht) = (1.0 / ns as f64, TAU / nt as f64);
+                while hs > 1e-13 {
+                    let mut moved = false;
+                    for (ds, dt) in [(hs, 0.0), (-hs, 0.0), (0.0, ht), (0.0, -ht)] {
+                        let s2 = (s + ds).clamp(0.0, 1.0);
+                        let v2 = f(s2, th + dt);
+                        if v2 < v {
+                            (v, s, th) = (v2, s2, th + dt);
+                            moved = true;
+                        }
+                    }
+                    if !moved {
+                        hs *= 0.5;
+                        ht *= 0.5;
+                    }
+                }
+                best = best.min(v);
+            }
+            let _ = pos_inv;
+            best
+        };
+        one_side(a, b, pos_ab).min(one_side(b, a, &pos_ab.inverse()))
+    }
+
+    fn check(a: &Patch, b: &Patch, pos: &Isometry3<f64>, label: &str) {
+        if let Err(e) = try_check(a, b, pos, label) {
+            panic!("{e}");
+        }
+    }
+
+    fn try_check(a: &Patch, b: &Patch, pos: &Isometry3<f64>, label: &str) -> Result<(), String> {
+        let r = patch_distance(a, b, pos);
+        let reference = reference(a, b, pos);
+        let on_a = a.point_distance(&r.point_a).0;
+        let on_b = b.point_distance(&(pos.inverse() * r.point_b)).0;
+        if !(on_a < 1e-9 && on_b < 1e-9) {
+            return Err(format!("{label}: witnesses off surfaces {on_a} {on_b}"));
+        }
+        if ((r.point_a - r.point_b).norm() - r.distance).abs() > 1e-12 {
+            return Err(format!("{label}: witness distance"));
+        }
+        if (r.distance - reference).abs() > 1e-7 * (1.0 + reference) {
+            return Err(format!(
+                "{label}: patch {} vs reference {} (a {:?}, b {:?}, pose {:?})",
+                r.distance, reference, a, b, pos
+            ));
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn random_patch_pairs_match_reference() {
+        let mut rng = Rng(7);
+        let mut fails = Vec::new();
+        for i in 0..150 {
+            let a = Patch::new(random_piece(&mut rng));
+            let b = Patch::new(random_piece(&mut rng));
+            let pos = random_pose(&mut rng, 3.0);
+            if let Err(e) = try_check(&a, &b, &pos, &format!("case {i}")) {
+                fails.push(e);
+            }
+        }
+        assert!(fails.is_empty(), "{} failures: {fails:#?}", fails.len());
+    }
+
+    /// Long sweep: `PATCH_STRESS=5000 cargo test --release -- --ignored patch_stress`.
+    #[test]
+    #[ignore]
+    fn patch_stress() {
+        let n: usize = std::env::var("PATCH_STRESS")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(1000);
+        let mut rng = Rng(12345);
+        let mut fails = Vec::new();
+        for i in 0..n {
+            let a = Patch::new(random_piece(&mut rng));
+            let b = Patch::new(random_piece(&mut rng));
+            let pos = random_pose(&mut rng, 2.0);
+            if let Err(e) = try_check(&a, &b, &pos, &format!("case {i}")) {
+                fails.push(e);
+            }
+        }
+        assert!(
+            fails.is_empty(),
+            "{} failures of {n}: {fails:#?}",
+            fails.len()
+        );
+    }
+
+    #[test]
+    fn degenerate_poses_match_reference() {
+        let mut rng = Rng(11);
+        for i in 0..40 {
+            let a = Patch::new(random_piece(&mut rng));
+            let b = Patch::new(random_piece(&mut rng));
+            let t = Vector3::new(0.0, 0.0, rng.f() * 2.0 - 1.0);
+            let poses = [
+                // coaxial, same and flipped orientation
+                Isometry3::from_parts(Translation3::from(t), UnitQuaternion::identity()),
+                Isometry3::from_parts(
+                    Translation3::from(t),
+                    UnitQuaternion::from_scaled_axis(Vector3::x() * PI),
+                ),
+                // parallel axes, offset
+                Isometry3::from_parts(
+                    Translation3::new(rng.f() * 2.0, 0.0, t.z),
+                    UnitQuaternion::identity(),
+                ),
+                // axes intersecting at a right angle
+                Isometry3::from_parts(
+                    Translation3::from(t),
+                    UnitQuaternion::from_scaled_axis(Vector3::x() * PI / 2.0),
+                ),
+                // B's origin on A's axis, oblique
+                Isometry3::from_parts(
+                    Translation3::from(t),
+                    UnitQuaternion::from_scaled_axis(Vector3::new(0.3, 0.7, 0.0)),
+                ),
+            ];
+            for (k, pos) in poses.iter().enumerate() {
+                check(&a, &b, pos, &format!("case {i} pose {k}"));
+            }
+        }
+    }
+}

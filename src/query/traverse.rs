@@ -1,0 +1,349 @@
+//! Algorithm 2 of the paper (section 4.2): best-first traversal of node pairs with a
+//! priority queue, upper bound from leaf patch distances plus their eps, lower bound from
+//! the queue's top; with the anytime budget of Johnson and Cohen (1997, section 3.1.3).
+//!
+//! Invariant (DESIGN.md): every queue key is a lower bound of the distance between the
+//! original surface pieces under its node pair; pairs dropped because their key reached
+//! `upper - tolerance` are remembered in `pruned_min`. At any moment
+//! `min(queue top, pruned_min, upper)` is a lower bound of the surface distance, and
+//! `upper` is an upper bound (a measured patch distance plus both leaves' eps). A leaf pair
+//! is evaluated once and re-inserted as "resolved" with key `d - eps_a - eps_b`; popping a
+//! resolved pair means nothing can be refined further.
+
+use super::bounds::{node_pair_bound, BoundKind};
+use super::containment::point_in_solid;
+use super::patch::Patch;
+use super::patch_distance::patch_distance;
+use super::tree::QueryTree;
+use nalgebra::{Isometry3, Point2, Point3, Vector3};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::time::{Duration, Instant};
+
+/// Budget of an anytime query: stop after this many node pairs or this much time and
+/// return the certified bounds reached so far.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Budget {
+    pub max_node_pairs: Option<usize>,
+    pub max_time: Option<Duration>,
+}
+
+/// Counters of one traversal.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct TraversalStats {
+    /// Node pairs popped from the queue.
+    pub node_pairs: usize,
+    /// Leaf pairs whose patch distances were computed.
+    pub leaf_tests: usize,
+    /// Patch pairs measured (up to 4 per leaf pair for biarcs).
+    pub patch_tests: usize,
+    /// Node-pair bounds computed.
+    pub bound_tests: usize,
+    /// Largest queue length.
+    pub max_queue: usize,
+    /// The budget stopped the traversal before the tolerance was reached.
+    pub budget_exhausted: bool,
+}
+
+/// Result of a traversal over the two boundary surfaces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceBounds {
+    /// Lower bound of the distance between the original boundary surfaces.
+    pub lower: f64,
+    /// Upper bound of the same.
+    pub upper: f64,
+    /// Distance between the approximating surfaces at the best leaf pair.
+    pub approx: f64,
+    /// Closest points on the approximating surfaces (A's frame).
+    pub point_a: Point3<f64>,
+    pub point_b: Point3<f64>,
+    /// Best leaf pair (for warm starts).
+    pub best_pair: Option<(u32, u32)>,
+    /// The approximating surfaces meet or interpenetrate.
+    pub surfaces_meet: bool,
+    /// Deepest verified interpenetration: a point of A inside B and a point of B inside A,
+    /// with the smaller of their classification margins.
+    pub penetration: Option<(Point3<f64>, Point3<f64>, f64)>,
+    pub stats: TraversalStats,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Entry {
+    key: f64,
+    a: u32,
+    b: u32,
+    resolved: bool,
+}
+
+impl PartialEq for Entry {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Entry {
+    /// Reversed: the smallest key is the greatest (BinaryHeap is a max-heap); resolved
+    /// entries first among equal keys.
+    fn cmp(&self, o: &Self) -> Ordering {
+        o.key
+            .total_cmp(&self.key)
+            .then(self.resolved.cmp(&o.resolved))
+    }
+}
+
+/// Exact distance between the approximating patches of two leaves, with interpenetration
+/// checks of the interior common normals (see [`super::patch_distance`]).
+pub(crate) struct LeafResult {
+    pub d: f64,
+    pub pa: Point3<f64>,
+    pub pb: Point3<f64>,
+    pub penetration: Option<(Point3<f64>, Point3<f64>, f64)>,
+    pub patch_tests: usize,
+}
+
+/// Outward unit normal (3-D, tree frame) of a patch at its surface point `x`.
+fn outward(tree: &QueryTree, patch: &Patch, orient: f64, x: &Point3<f64>) -> Vector3<f64> {
+    let rho = x.x.hypot(x.y);
+    let e = if rho > 0.0 {
+        Vector3::new(x.x / rho, x.y / rho, 0.0)
+    } else {
+        Vector3::x()
+    };
+    let n = tree.outward_normal(&patch.arc, Point2::new(rho, x.z), orient);
+    e * n.x + Vector3::z() * n.y
+}
+
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn leaf_pair(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    orient_a: f64,
+    orient_b: f64,
+    na: u32,
+    nb: u32,
+    pos_ab: &Isometry3<f64>,
+    pos_ba: &Isometry3<f64>,
+) -> LeafResult {
+    let (la, lb) = (&ta.nodes[na as usize], &tb.nodes[nb as usize]);
+    let mut r = LeafResult {
+        d: f64::INFINITY,
+        pa: Point3::origin(),
+        pb: Point3::origin(),
+        penetration: None,
+        patch_tests: 0,
+    };
+    for pa in &ta.patches[la.patch_start as usize..la.patch_end as usize] {
+        for pb in &tb.patches[lb.patch_start as usize..lb.patch_end as usize] {
+            r.patch_tests += 1;
+            let pd = patch_distance(pa, pb, pos_ab);
+            if pd.distance < r.d {
+                r.d = pd.distance;
+                r.pa = pd.point_a;
+                r.pb = pd.point_b;
+            }
+            for (p, q) in &pd.interior_pairs {
+                let w = q - p;
+                let n_a = outward(ta, pa, orient_a, p);
+                let q_b = pos_ba * q;
+                let n_b = pos_ab.rotation * outward(tb, pb, orient_b, &q_b);
+                if n_a.dot(&w) >= 0.0 || n_b.dot(&w) <= 0.0 {
+                    continue;
+                }
+                let in_a = point_in_solid(ta, q);
+                let in_b = point_in_solid(tb, &(pos_ba * p));
+                if in_a.inside && in_b.inside {
+                    let m = in_a.margin.min(in_b.margin);
+                    if r.penetration.is_none_or(|(_, _, m0)| m > m0) {
+                        r.penetration = Some((*p, *q, m));
+                    }
+                }
+            }
+        }
+    }
+    r
+}
+
+/// Options of the traversal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TraversalOptions {
+    /// Stop when `upper - lower <= tolerance`.
+    pub tolerance: f64,
+    pub budget: Budget,
+    pub bound: BoundKind,
+}
+
+/// Algorithm 2 over the boundary surfaces of two trees; `pos_ab` places B in A's frame.
+/// `warm` is a leaf pair evaluated first (frame coherence).
+pub fn traverse(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    opts: &TraversalOptions,
+    warm: Option<(u32, u32)>,
+) -> SurfaceBounds {
+    let start = Instant::now();
+    let pos_ba = pos_ab.inverse();
+    let (orient_a, orient_b) = (ta.orientation(), tb.orientation());
+    let mut stats = TraversalStats::default();
+    let mut out = SurfaceBounds {
+        lower: 0.0,
+        upper: f64::INFINITY,
+        approx: f64::INFINITY,
+        point_a: Point3::origin(),
+        point_b: Point3::origin(),
+        best_pair: None,
+        surfaces_meet: false,
+        penetration: None,
+        stats,
+    };
+    if ta.nodes.is_empty() || tb.nodes.is_empty() {
+        out.lower = f64::INFINITY;
+        return out;
+    }
+    let tol = opts.tolerance.max(0.0);
+    let mut heap = BinaryHeap::new();
+    let mut pruned_min = f64::INFINITY;
+    let evaluate =
+        |a: u32, b: u32, key: f64, out: &mut SurfaceBounds, stats: &mut TraversalStats| {
+            stats.leaf_tests += 1;
+            let r = leaf_pair(ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba);
+            stats.patch_tests += r.patch_tests;
+            let e = ta.nodes[a as usize].eps + tb.nodes[b as usize].eps;
+            if r.d + e < out.upper {
+                out.upper = r.d + e;
+            }
+            if r.d < out.approx {
+                out.approx = r.d;
+                out.point_a = r.pa;
+                out.point_b = r.pb;
+                out.best_pair = Some((a, b));
+            }
+            let meets = r.d == 0.0 || r.penetration.is_some();
+            if let Some(p) = r.penetration {
+                if out.penetration.is_none_or(|(_, _, m)| p.2 > m) {
+                    out.penetration = Some(p);
+                }
+            }
+            if meets {
+                out.surfaces_meet = true;
+                f64::NEG_INFINITY
+            } else {
+                key.max(r.d - e)
+            }
+        };
+    // Warm start: evaluate the last best leaf pair first for a tight upper bound; its
+    // resolved key is kept so the traversal does not measure it twice.
+    let mut warm_key: Option<(u32, u32, f64)> = None;
+    if let Some((a, b)) = warm {
+        if (a as usize) < ta.nodes.len()
+            && (b as usize) < tb.nodes.len()
+            && ta.nodes[a as usize].is_leaf()
+            && tb.nodes[b as usize].is_leaf()
+        {
+            let key = evaluate(a, b, f64::NEG_INFINITY, &mut out, &mut stats);
+            if out.surfaces_meet {
+                out.lower = 0.0;
+                out.stats = stats;
+                return out;
+            }
+            warm_key = Some((a, b, key));
+        }
+    }
+    let root_key = {
+        stats.bound_tests += 1;
+        node_pair_bound(
+            &ta.nodes[ta.root as usize].bound,
+            &tb.nodes[tb.root as usize].bound,
+            pos_ab,
+            opts.bound,
+            f64::INFINITY,
+        )
+    };
+    heap.push(Entry {
+        key: root_key,
+        a: ta.root,
+        b: tb.root,
+        resolved: false,
+    });
+    let lower;
+    loop {
+        let Some(e) = heap.pop() else {
+            lower = out.upper;
+            break;
+        };
+        if e.resolved || e.key >= out.upper - tol {
+            lower = e.key;
+            break;
+        }
+        let over_pairs = opts
+            .budget
+            .max_node_pairs
+            .is_some_and(|m| stats.node_pairs >= m);
+        let over_time = opts.budget.max_time.is_some_and(|t| start.elapsed() >= t);
+        if over_pairs || over_time {
+            stats.budget_exhausted = true;
+            lower = e.key;
+            break;
+        }
+        stats.node_pairs += 1;
+        let (na, nb) = (&ta.nodes[e.a as usize], &tb.nodes[e.b as usize]);
+        if na.is_leaf() && nb.is_leaf() {
+            let key = match warm_key {
+                Some((a, b, k)) if (a, b) == (e.a, e.b) => k.max(e.key),
+                _ => evaluate(e.a, e.b, e.key, &mut out, &mut stats),
+            };
+            if out.surfaces_meet {
+                // Lower bound can only be <= 0 now.
+                lower = f64::NEG_INFINITY;
+                break;
+            }
+            if key < out.upper - tol {
+                heap.push(Entry {
+                    key,
+                    a: e.a,
+                    b: e.b,
+                    resolved: true,
+                });
+            } else {
+                pruned_min = pruned_min.min(key);
+            }
+            continue;
+        }
+        let split_a = !na.is_leaf() && (nb.is_leaf() || na.bound.radius >= nb.bound.radius);
+        let pairs = if split_a {
+            [(na.children[0], e.b), (na.children[1], e.b)]
+        } else {
+            [(e.a, nb.children[0]), (e.a, nb.children[1])]
+        };
+        for (a, b) in pairs {
+            stats.bound_tests += 1;
+            let prune_at = out.upper - tol;
+            let key = e.key.max(node_pair_bound(
+                &ta.nodes[a as usize].bound,
+                &tb.nodes[b as usize].bound,
+                pos_ab,
+                opts.bound,
+                prune_at,
+            ));
+            if key < prune_at {
+                heap.push(Entry {
+                    key,
+                    a,
+                    b,
+                    resolved: false,
+                });
+            } else {
+                pruned_min = pruned_min.min(key);
+            }
+        }
+        stats.max_queue = stats.max_queue.max(heap.len());
+    }
+    out.lower = lower.min(pruned_min).min(out.upper).max(0.0);
+    out.stats = stats;
+    out
+}

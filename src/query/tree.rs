@@ -1,0 +1,345 @@
+//! The query's view of a solid's bounding-volume hierarchy (paper section 4.1): a binary
+//! tree whose leaves are biarcs (one or two profile pieces) with their approximation bound
+//! `eps`, and whose every node stores a disk of the (rho, z) half-plane that contains both
+//! the original curve piece under it and its approximation. Revolved, the disk is a solid
+//! torus containing the corresponding part of the solid's boundary (see [`super::bounds`]).
+
+use super::patch::{Patch, ProfileArc};
+use crate::biarc::{Arc as BiarcArc, BiarcTree};
+use crate::profile::ProfileKind;
+use nalgebra::{Point2, Vector2};
+
+/// Marker for "no child".
+pub const NO_CHILD: u32 = u32::MAX;
+
+/// A disk in the (rho, z) half-plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Disk {
+    pub center: Point2<f64>,
+    pub radius: f64,
+}
+
+impl Disk {
+    /// Smallest disk containing both disks.
+    pub fn union(&self, o: &Disk) -> Disk {
+        let d = (o.center - self.center).norm();
+        if d + o.radius <= self.radius {
+            return *self;
+        }
+        if d + self.radius <= o.radius {
+            return *o;
+        }
+        let r = 0.5 * (d + self.radius + o.radius);
+        let t = (r - self.radius) / d;
+        Disk {
+            center: self.center + (o.center - self.center) * t,
+            radius: r * (1.0 + 4.0 * f64::EPSILON),
+        }
+    }
+
+    /// A disk containing a profile piece: the chord's Thales disk for arcs of sweep at most
+    /// pi (every point of such an arc sees the chord under an angle of at least pi/2), else
+    /// the arc's full circle; the segment's Thales disk for segments.
+    pub fn around(piece: &ProfileArc) -> Disk {
+        match *piece {
+            ProfileArc::Arc {
+                center,
+                radius,
+                sweep,
+                ..
+            } if sweep.abs() > std::f64::consts::PI => Disk { center, radius },
+            _ => {
+                let (a, b) = (piece.start(), piece.end());
+                Disk {
+                    center: nalgebra::center(&a, &b),
+                    radius: 0.5 * (b - a).norm() * (1.0 + 4.0 * f64::EPSILON),
+                }
+            }
+        }
+    }
+
+    /// The disk grown by `eps`.
+    pub fn inflated(&self, eps: f64) -> Disk {
+        Disk {
+            center: self.center,
+            radius: self.radius + eps,
+        }
+    }
+}
+
+/// One leaf: a biarc (or a single piece) with its bound.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Leaf {
+    /// The pieces of the approximation, in profile order.
+    pub pieces: Vec<ProfileArc>,
+    /// Two-sided Hausdorff bound between the original curve piece and `pieces`.
+    pub eps: f64,
+    /// Disk containing the original curve piece and `pieces`.
+    pub bound: Disk,
+}
+
+impl Leaf {
+    /// Leaf from approximation pieces and their bound: the disk around the pieces, grown
+    /// by `eps` so that it also contains the original curve (Hausdorff distance <= eps).
+    pub fn new(pieces: Vec<ProfileArc>, eps: f64) -> Leaf {
+        let mut disk = Disk::around(&pieces[0]);
+        for p in &pieces[1..] {
+            disk = disk.union(&Disk::around(p));
+        }
+        Leaf {
+            pieces,
+            eps,
+            bound: disk.inflated(eps),
+        }
+    }
+}
+
+/// A node of the query tree.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Node {
+    pub bound: Disk,
+    /// Largest leaf eps below the node.
+    pub eps: f64,
+    pub children: [u32; 2],
+    /// For leaves: range of patches in [`QueryTree::patches`].
+    pub patch_start: u32,
+    pub patch_end: u32,
+}
+
+impl Node {
+    pub fn is_leaf(&self) -> bool {
+        self.children[0] == NO_CHILD
+    }
+}
+
+/// Flat binary tree over a profile's leaves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct QueryTree {
+    pub nodes: Vec<Node>,
+    pub patches: Vec<Patch>,
+    pub root: u32,
+    /// Profile pieces in order (for point-in-profile tests).
+    pub chain: Vec<ProfileArc>,
+    pub kind: ProfileKind,
+    /// Largest leaf eps.
+    pub eps: f64,
+}
+
+impl QueryTree {
+    /// Balanced tree over consecutive leaves (profile order).
+    ///
+    /// # Panics
+    /// Never: an empty leaf list gives an empty tree whose root is [`NO_CHILD`].
+    pub fn from_leaves(leaves: Vec<Leaf>, kind: ProfileKind) -> QueryTree {
+        let mut t = QueryTree {
+            nodes: Vec::with_capacity(2 * leaves.len()),
+            patches: Vec::new(),
+            root: NO_CHILD,
+            chain: leaves
+                .iter()
+                .flat_map(|l| l.pieces.iter().copied())
+                .collect(),
+            kind,
+            eps: leaves.iter().map(|l| l.eps).fold(0.0, f64::max),
+        };
+        if !leaves.is_empty() {
+            t.root = t.build(&leaves);
+        }
+        t
+    }
+
+    fn build(&mut self, leaves: &[Leaf]) -> u32 {
+        if leaves.len() == 1 {
+            let l = &leaves[0];
+            let start = self.patches.len() as u32;
+            self.patches.extend(l.pieces.iter().map(|p| Patch::new(*p)));
+            self.nodes.push(Node {
+                bound: l.bound,
+                eps: l.eps,
+                children: [NO_CHILD, NO_CHILD],
+                patch_start: start,
+                patch_end: self.patches.len() as u32,
+            });
+            return self.nodes.len() as u32 - 1;
+        }
+        let mid = leaves.len() / 2;
+        let a = self.build(&leaves[..mid]);
+        let b = self.build(&leaves[mid..]);
+        self.push_parent(a, b)
+    }
+
+    /// Appends an inner node over `a` and `b` whose disk is the union of theirs.
+    fn push_parent(&mut self, a: u32, b: u32) -> u32 {
+        let (na, nb) = (self.nodes[a as usize], self.nodes[b as usize]);
+        self.nodes.push(Node {
+            bound: na.bound.union(&nb.bound),
+            eps: na.eps.max(nb.eps),
+            children: [a, b],
+            patch_start: 0,
+            patch_end: 0,
+        });
+        self.nodes.len() as u32 - 1
+    }
+
+    /// The query view of a biarc tree: its spiral subtrees copied node by node (their disks
+    /// contain both the curve piece and the biarc), under a balanced upper level over the
+    /// spirals in profile order whose disks are unions of the children's disks.
+    pub fn from_biarc_tree(bt: &BiarcTree, kind: ProfileKind) -> QueryTree {
+        let mut t = QueryTree {
+            nodes: Vec::with_capacity(bt.nodes().len() + bt.spirals().len()),
+            patches: Vec::new(),
+            root: NO_CHILD,
+            chain: bt
+                .leaves()
+                .flat_map(|l| l.arcs().iter().filter(|a| a.length > 0.0).map(piece_of_arc))
+                .collect(),
+            kind,
+            eps: 0.0,
+        };
+        let roots: Vec<u32> = bt
+            .spirals()
+            .iter()
+            .map(|s| t.copy_subtree(bt, s.root))
+            .collect();
+        t.eps = t
+            .nodes
+            .iter()
+            .filter(|n| n.is_leaf())
+            .map(|n| n.eps)
+            .fold(0.0, f64::max);
+        if !roots.is_empty() {
+            t.root = t.build_upper(&roots);
+        }
+        t
+    }
+
+    fn copy_subtree(&mut self, bt: &BiarcTree, id: u32) -> u32 {
+        let n = bt.node(id);
+        let disk = n.bounding_disk();
+        let bound = Disk {
+            center: disk.center,
+            radius: disk.radius,
+        };
+        let mut node = Node {
+            bound,
+            eps: n.eps(),
+            children: [NO_CHILD, NO_CHILD],
+            patch_start: 0,
+            patch_end: 0,
+        };
+        if let Some([c0, c1]) = n.children() {
+            let a = self.copy_subtree(bt, c0);
+            let b = self.copy_subtree(bt, c1);
+            node.children = [a, b];
+        } else {
+            node.patch_start = self.patches.len() as u32;
+            self.patches.extend(
+                n.arcs()
+                    .iter()
+                    .filter(|a| a.length > 0.0)
+                    .map(|a| Patch::new(piece_of_arc(a))),
+            );
+            node.patch_end = self.patches.len() as u32;
+        }
+        self.nodes.push(node);
+        self.nodes.len() as u32 - 1
+    }
+
+    fn build_upper(&mut self, roots: &[u32]) -> u32 {
+        if roots.len() == 1 {
+            return roots[0];
+        }
+        let mid = roots.len() / 2;
+        let a = self.build_upper(&roots[..mid]);
+        let b = self.build_upper(&roots[mid..]);
+        self.push_parent(a, b)
+    }
+
+    /// Exact tree (eps = 0) of given profile pieces, each split into leaves of sweep at most
+    /// `max_sweep` (arcs) or length at most `max_len` (segments). Used for analytic solids
+    /// (spheres, tori, cylinders) whose profiles are exactly arcs and segments.
+    pub fn from_exact_pieces(
+        pieces: &[ProfileArc],
+        kind: ProfileKind,
+        max_sweep: f64,
+        max_len: f64,
+    ) -> QueryTree {
+        let mut leaves = Vec::new();
+        for p in pieces {
+            let n = match *p {
+                ProfileArc::Arc { sweep, .. } => (sweep.abs() / max_sweep).ceil().max(1.0),
+                ProfileArc::Segment { start, end } => {
+                    ((end - start).norm() / max_len).ceil().max(1.0)
+                }
+            } as usize;
+            for i in 0..n {
+                let (s0, s1) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
+                let sub = p.sub_piece(s0, s1);
+                leaves.push(Leaf::new(vec![sub], 0.0));
+            }
+        }
+        QueryTree::from_leaves(leaves, kind)
+    }
+
+    /// Profile orientation: +1 when the region is to the left of the chain (counter-
+    /// clockwise loop, closed by the axis for open profiles), -1 otherwise.
+    pub fn orientation(&self) -> f64 {
+        // Signed area by the shoelace formula on a fine sampling of the chain.
+        let mut area = 0.0;
+        let mut prev: Option<Point2<f64>> = None;
+        let mut first = None;
+        for p in &self.chain {
+            for i in 0..=8 {
+                let q = p.point_at(i as f64 / 8.0);
+                if let Some(pr) = prev {
+                    area += crate::query::patch::cross2(pr.coords, q.coords);
+                } else {
+                    first = Some(q);
+                }
+                prev = Some(q);
+            }
+        }
+        if let (Some(a), Some(b)) = (prev, first) {
+            area += crate::query::patch::cross2(a.coords, b.coords);
+        }
+        if area >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
+    /// Outward unit normal of the profile piece `piece` at its planar point `m`.
+    pub fn outward_normal(
+        &self,
+        piece: &ProfileArc,
+        m: Point2<f64>,
+        orientation: f64,
+    ) -> Vector2<f64> {
+        // Tangent at the closest parameter; the region lies to the left when orientation>0.
+        let t = match *piece {
+            ProfileArc::Arc { center, sweep, .. } => {
+                let d = (m - center).normalize();
+                sweep.signum() * Vector2::new(-d.y, d.x)
+            }
+            ProfileArc::Segment { start, end } => (end - start).normalize(),
+        };
+        orientation * Vector2::new(t.y, -t.x)
+    }
+}
+
+/// A biarc tree arc as a profile piece.
+pub fn piece_of_arc(a: &BiarcArc) -> ProfileArc {
+    match (a.center(), a.angle_range()) {
+        (Some(center), Some((phi_start, _))) if !a.is_segment() => ProfileArc::Arc {
+            center,
+            radius: a.radius(),
+            phi_start,
+            sweep: a.sweep,
+        },
+        _ => ProfileArc::Segment {
+            start: a.start,
+            end: a.end,
+        },
+    }
+}
