@@ -4,4 +4,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
 cargo build --release --workspace
-target/release/revdist figures --out figures
+out=figures
+mkdir -p "$out"
+target/release/revdist figures --out "$out"          # model profiles and M_t frames
+target/release/convergence "$out"                    # biarc vs chord convergence (CSV + SVG)
+target/release/accuracy_time "$out"                  # tree sizes, certified query times (CSV + MD + SVG)
+echo "figures and tables written to $out/"

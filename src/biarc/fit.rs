@@ -34,6 +34,14 @@ impl<F: Fn(f64) -> (Point2<f64>, Vector2<f64>)> PlanarCurve for F {
     }
 }
 
+/// A NURBS profile piece in its own parameter (de Boor evaluation).
+impl PlanarCurve for crate::nurbs::NurbsCurve {
+    fn point_and_derivative(&self, t: f64) -> (Point2<f64>, Vector2<f64>) {
+        let d = self.derivatives(t);
+        (Point2::from(d[0]), d[1])
+    }
+}
+
 /// A curve sample: parameter, point and first derivative.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurveSample {
@@ -61,6 +69,9 @@ impl CurveSample {
 /// taken to contain the whole piece (exact circle or line): any curve point is then a joint.
 /// Rounding of `g` is a few ulps of `|B-A|^2`, i.e. ~1e-15 relative; 1e-12 leaves margin.
 pub const DEGENERATE_JOINT_REL: f64 = 1e-12;
+
+/// `g` below this many ulps of `|A - X| |B - X|` is rounding noise (two products and a sum).
+const G_NOISE_ULPS: f64 = 4.0;
 
 /// Iteration cap of the joint solver; bisection alone halves the bracket 200 times, far past
 /// double precision.
@@ -125,9 +136,16 @@ impl JCircle {
         let (sin_w, cos_w) = (0.5 * (theta0 - theta1)).sin_cos();
         JCircle { a, b, sin_w, cos_w }
     }
-    fn g(&self, x: Point2<f64>) -> f64 {
+    /// `g(x)` and whether it is within its rounding noise of zero (then `x` lies on the
+    /// J-circle to working precision and refining the root further cannot reduce the joint's
+    /// G1 defect).
+    fn g_with_noise(&self, x: Point2<f64>) -> (f64, bool) {
         let (u, w) = (self.a - x, self.b - x);
-        self.sin_w * u.dot(&w) + self.cos_w * cross(u, w)
+        let g = self.sin_w * u.dot(&w) + self.cos_w * cross(u, w);
+        (
+            g,
+            g.abs() <= G_NOISE_ULPS * f64::EPSILON * u.norm() * w.norm(),
+        )
     }
     /// Gradient of g at A and at B.
     fn grad_ends(&self) -> (Vector2<f64>, Vector2<f64>) {
@@ -171,7 +189,10 @@ pub fn fit_biarc<C: PlanarCurve + ?Sized>(
     let span = s1.t - s0.t;
     let qa = ga.dot(&da) / span;
     let qb = -gb.dot(&db) / span;
-    let q = |t: f64, p: Point2<f64>| jc.g(p) / ((t - s0.t) * (s1.t - t));
+    let q = |t: f64, p: Point2<f64>| {
+        let (g, settled) = jc.g_with_noise(p);
+        (g / ((t - s0.t) * (s1.t - t)), settled)
+    };
     let scale = DEGENERATE_JOINT_REL * chord * (na.max(nb) / span) * chord;
 
     let joint = if qa.abs() <= scale && qb.abs() <= scale {
@@ -208,7 +229,7 @@ fn solve_joint<C: PlanarCurve + ?Sized>(
     t1: f64,
     qa: f64,
     qb: f64,
-    q: &dyn Fn(f64, Point2<f64>) -> f64,
+    q: &impl Fn(f64, Point2<f64>) -> (f64, bool),
 ) -> CurveSample {
     if qa.signum() == qb.signum() {
         // No bracket: sample a few interior points for a sign change, else take the best.
@@ -217,7 +238,7 @@ fn solve_joint<C: PlanarCurve + ?Sized>(
         for i in 1..16 {
             let t = t0 + (t1 - t0) * i as f64 / 16.0;
             let s = CurveSample::at(curve, t);
-            let v = q(t, s.point);
+            let (v, _) = q(t, s.point);
             if v.signum() != prev.1.signum() {
                 return brent(curve, prev.0, t, prev.1, v, q);
             }
@@ -244,7 +265,7 @@ fn brent<C: PlanarCurve + ?Sized>(
     mut b: f64,
     mut fa: f64,
     mut fb: f64,
-    q: &dyn Fn(f64, Point2<f64>) -> f64,
+    q: &impl Fn(f64, Point2<f64>) -> (f64, bool),
 ) -> CurveSample {
     let (lo, hi) = (a, b);
     let mut sample_b: Option<CurveSample> = None;
@@ -307,7 +328,11 @@ fn brent<C: PlanarCurve + ?Sized>(
         let margin = JOINT_END_MARGIN * (hi - lo);
         b = b.clamp(lo + margin, hi - margin);
         let s = CurveSample::at(curve, b);
-        fb = q(b, s.point);
+        let (value, settled) = q(b, s.point);
+        fb = value;
+        if settled {
+            return s;
+        }
         sample_b = Some(s);
     }
     sample_b.unwrap_or_else(|| CurveSample::at(curve, b))

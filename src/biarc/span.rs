@@ -29,17 +29,18 @@ impl PlanarCurve for SpanCurve<'_> {
                 Vector2::zeros(),
             );
         }
-        let mut q = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
-        q[..=n].copy_from_slice(h);
         let v = 1.0 - u;
-        for r in 1..n {
-            for i in 0..=n - r {
-                let next = q[i + 1];
-                for (qc, nc) in q[i].iter_mut().zip(next) {
-                    *qc = v * *qc + u * nc;
-                }
-            }
-        }
+        // The last two de Casteljau points; a small fixed buffer for the usual degrees <= 3.
+        let (q0, q1) = if n <= 3 {
+            let mut q = [[0.0f64; 3]; 4];
+            q[..=n].copy_from_slice(h);
+            last_two(&mut q[..=n], u, v)
+        } else {
+            let mut q = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
+            q[..=n].copy_from_slice(h);
+            last_two(&mut q[..=n], u, v)
+        };
+        let q = [q0, q1];
         let p = [
             v * q[0][0] + u * q[1][0],
             v * q[0][1] + u * q[1][1],
@@ -61,9 +62,89 @@ impl PlanarCurve for SpanCurve<'_> {
     }
 }
 
+impl SpanCurve<'_> {
+    /// Signed curvature at `u`: `det(P, P', P'') / (W^3 |C'|^3)` from the last three de
+    /// Casteljau points (`P'' = n (n - 1) (Q2 - 2 Q1 + Q0)` at level `n - 2`).
+    pub fn curvature(&self, u: f64) -> f64 {
+        let h = self.homogeneous;
+        let n = h.len() - 1;
+        if n < 2 {
+            return 0.0;
+        }
+        let v = 1.0 - u;
+        let mut q = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
+        q[..=n].copy_from_slice(h);
+        for r in 1..n - 1 {
+            for i in 0..=n - r {
+                let next = q[i + 1];
+                for (qc, nc) in q[i].iter_mut().zip(next) {
+                    *qc = v * *qc + u * nc;
+                }
+            }
+        }
+        let (q0, q1, q2) = (q[0], q[1], q[2]);
+        let nf = n as f64;
+        let lerp = |a: [f64; 3], b: [f64; 3]| {
+            [
+                v * a[0] + u * b[0],
+                v * a[1] + u * b[1],
+                v * a[2] + u * b[2],
+            ]
+        };
+        let (r0, r1) = (lerp(q0, q1), lerp(q1, q2));
+        let p = lerp(r0, r1);
+        let d1 = [
+            nf * (r1[0] - r0[0]),
+            nf * (r1[1] - r0[1]),
+            nf * (r1[2] - r0[2]),
+        ];
+        let c = nf * (nf - 1.0);
+        let d2 = [
+            c * (q2[0] - 2.0 * q1[0] + q0[0]),
+            c * (q2[1] - 2.0 * q1[1] + q0[1]),
+            c * (q2[2] - 2.0 * q1[2] + q0[2]),
+        ];
+        let det = p[0] * (d1[1] * d2[2] - d1[2] * d2[1]) - p[1] * (d1[0] * d2[2] - d1[2] * d2[0])
+            + p[2] * (d1[0] * d2[1] - d1[1] * d2[0]);
+        let w = p[2];
+        let sx = d1[0] * w - p[0] * d1[2];
+        let sy = d1[1] * w - p[1] * d1[2];
+        // |C'| = |(sx, sy)| / W^2, C' x C'' = det / W^3
+        let speed = sx.hypot(sy) / (w * w);
+        det / (w * w * w) / (speed * speed * speed)
+    }
+}
+
+/// Runs de Casteljau on `q` down to two points and returns them.
+#[inline]
+fn last_two(q: &mut [[f64; 3]], u: f64, v: f64) -> ([f64; 3], [f64; 3]) {
+    let n = q.len() - 1;
+    for r in 1..n {
+        for i in 0..=n - r {
+            let next = q[i + 1];
+            for (qc, nc) in q[i].iter_mut().zip(next) {
+                *qc = v * *qc + u * nc;
+            }
+        }
+    }
+    (q[0], q[1])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn parabola_curvature() {
+        // y = x^2 on [0, 1] as a polynomial quadratic: kappa = 2 / (1 + 4x^2)^(3/2)
+        let h = [[0.0, 0.0, 1.0], [0.5, 0.0, 1.0], [1.0, 1.0, 1.0]];
+        let c = SpanCurve { homogeneous: &h };
+        for i in 0..=10 {
+            let x = i as f64 / 10.0;
+            let expect = 2.0 / (1.0 + 4.0 * x * x).powf(1.5);
+            assert!((c.curvature(x) - expect).abs() < 1e-13);
+        }
+    }
 
     #[test]
     fn quarter_circle_rational_quadratic() {
@@ -81,6 +162,11 @@ mod tests {
                 - c.point_and_derivative((u - e).max(0.0)).0)
                 / ((u + e).min(1.0) - (u - e).max(0.0));
             assert!((fd - d).norm() < 1e-5, "u {u}: {fd:?} vs {d:?}");
+            assert!(
+                (c.curvature(u) - 1.0).abs() < 1e-12,
+                "kappa {}",
+                c.curvature(u)
+            );
         }
     }
 }

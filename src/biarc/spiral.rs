@@ -84,6 +84,11 @@ fn push_roots(p: &Bernstein, scale: f64, reason: SplitReason, out: &mut Vec<(f64
     if p.is_negligible(SPLIT_NOISE_REL * scale) {
         return;
     }
+    // Bernstein coefficients of one strict sign: no root on [0, 1] (convex hull property).
+    let c = p.coeffs();
+    if c.iter().all(|&v| v > 0.0) || c.iter().all(|&v| v < 0.0) {
+        return;
+    }
     out.extend(
         odd_roots(p, SPLIT_ROOT_TOL)
             .into_iter()
@@ -98,14 +103,48 @@ pub fn spiral_splits(h: &[[f64; 3]]) -> Vec<(f64, SplitReason)> {
     if h.len() < 3 {
         return out; // degree <= 1: a segment, already a spiral
     }
+    let w0 = h[0][2];
+    if h.iter().all(|p| p[2] == w0) {
+        polynomial_splits(h, w0, &mut out);
+    } else {
+        rational_splits(h, &mut out);
+    }
+    merge(out)
+}
+
+/// Polynomial span (all weights equal): `rho' = x'`, `z' = y'`, `D = x'y'' - y'x''`,
+/// `K = 2 D' S - 3 D S'` with `S = x'^2 + y'^2` (degree 4n - 6 instead of 8n - 6).
+fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>) {
+    let x = Bernstein::new(h.iter().map(|p| p[0] / w0).collect());
+    let y = Bernstein::new(h.iter().map(|p| p[1] / w0).collect());
+    let (xd, yd) = (x.derivative(), y.derivative());
+    let (xdd, ydd) = (xd.derivative(), yd.derivative());
+    let scale = x.max_abs_coeff().max(y.max_abs_coeff());
+    push_roots(&xd, scale, SplitReason::RhoExtremum, out);
+    push_roots(&yd, scale, SplitReason::ZExtremum, out);
+    let (d, d_scale) = cross_diff(&xd, &ydd, &yd, &xdd);
+    if d.is_negligible(SPLIT_NOISE_REL * d_scale) {
+        return; // straight
+    }
+    push_roots(&d, d_scale, SplitReason::Inflection, out);
+    let s = combine(&xd.product(&xd), 1.0, &yd.product(&yd), 1.0);
+    let lhs = d.derivative().product(&s);
+    let rhs = d.product(&s.derivative());
+    let k_scale = (2.0 * lhs.max_abs_coeff()).max(3.0 * rhs.max_abs_coeff());
+    let k = combine(&lhs, 2.0, &rhs, -3.0);
+    push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
+}
+
+/// Rational span: the homogeneous formulas of the module doc.
+fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) {
     let (x, y, w) = (coord(h, 0), coord(h, 1), coord(h, 2));
     let (xd, yd, wd) = (x.derivative(), y.derivative(), w.derivative());
     let (xdd, ydd, wdd) = (xd.derivative(), yd.derivative(), wd.derivative());
 
     let (rho_d, rho_scale) = cross_diff(&xd, &w, &x, &wd);
     let (z_d, z_scale) = cross_diff(&yd, &w, &y, &wd);
-    push_roots(&rho_d, rho_scale, SplitReason::RhoExtremum, &mut out);
-    push_roots(&z_d, z_scale, SplitReason::ZExtremum, &mut out);
+    push_roots(&rho_d, rho_scale, SplitReason::RhoExtremum, out);
+    push_roots(&z_d, z_scale, SplitReason::ZExtremum, out);
 
     // D = X (Y'W'' - W'Y'') - Y (X'W'' - W'X'') + W (X'Y'' - Y'X'')
     let (m0, s0) = cross_diff(&yd, &wdd, &wd, &ydd);
@@ -116,11 +155,10 @@ pub fn spiral_splits(h: &[[f64; 3]]) -> Vec<(f64, SplitReason)> {
         + y.max_abs_coeff() * (s1 + m1.max_abs_coeff())
         + w.max_abs_coeff() * (s2 + m2.max_abs_coeff());
     let d = combine(&combine(&t0, 1.0, &t1, -1.0), 1.0, &t2, 1.0);
-    let straight = d.is_negligible(SPLIT_NOISE_REL * d_scale);
-    if straight {
-        return merge(out);
+    if d.is_negligible(SPLIT_NOISE_REL * d_scale) {
+        return; // straight
     }
-    push_roots(&d, d_scale, SplitReason::Inflection, &mut out);
+    push_roots(&d, d_scale, SplitReason::Inflection, out);
 
     // K = 2 (D'W + 3 D W') S - 3 D W S'
     let s = combine(&rho_d.product(&rho_d), 1.0, &z_d.product(&z_d), 1.0);
@@ -130,8 +168,7 @@ pub fn spiral_splits(h: &[[f64; 3]]) -> Vec<(f64, SplitReason)> {
     let rhs = d.product(&w).product(&sd);
     let k_scale = lhs.max_abs_coeff().max(3.0 * rhs.max_abs_coeff());
     let k = combine(&lhs, 1.0, &rhs, -3.0);
-    push_roots(&k, k_scale, SplitReason::CurvatureExtremum, &mut out);
-    merge(out)
+    push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
 }
 
 fn merge(mut v: Vec<(f64, SplitReason)>) -> Vec<(f64, SplitReason)> {

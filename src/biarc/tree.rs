@@ -18,7 +18,7 @@
 use nalgebra::{Point2, Vector2};
 
 use super::arc::{cross, Arc};
-use super::fit::{fit_biarc, CurveSample, FittedBiarc};
+use super::fit::{fit_biarc, CurveSample, FittedBiarc, PlanarCurve};
 use super::span::{SpanCurve, MAX_SPAN_DEGREE};
 use super::spiral::spiral_splits;
 use super::BiarcError;
@@ -38,6 +38,14 @@ pub const MAX_DEPTH: u32 = 60;
 /// Smallest accepted `eps`, relative to the profile size (bounding-box diagonal): below it the
 /// floating-point slack of the bounds (~1e-14 of the coordinates) would dominate.
 pub const MIN_EPS_REL: f64 = 1e-12;
+
+/// Spirals of consecutive spans merge only when their tangents at the knot agree to this
+/// angle (radians): C1 / G1 knots of B-splines agree to rounding (~1e-16), creases by far more.
+pub const MERGE_TANGENT_TOL: f64 = 1e-10;
+
+/// Relative size below which a derivative or curvature difference counts as zero in the merge
+/// test (values at the knot computed from two spans differ by rounding, ~1e-15 relative).
+pub const MERGE_ZERO_REL: f64 = 1e-12;
 
 /// Errors building a biarc tree.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -163,8 +171,8 @@ pub struct SpiralInfo {
     pub root: NodeId,
     /// Axis-aligned box containing the spiral's curve.
     pub aabb: Aabb2,
-    span: u32,
-    u_range: (f64, f64),
+    /// First and last span (inclusive) of the spiral in the tree's span table.
+    spans: (u32, u32),
 }
 
 /// A node of the upper AABB hierarchy over spirals.
@@ -202,6 +210,39 @@ struct SpanRecord {
     t1: f64,
     offset: u32,
     len: u32,
+}
+
+/// Consecutive Bezier spans of one profile piece, evaluated in the piece's parameter `t`.
+#[derive(Debug, Clone, Copy)]
+struct PieceCurve<'a> {
+    spans: &'a [SpanRecord],
+    coeffs: &'a [[f64; 3]],
+}
+
+impl PieceCurve<'_> {
+    /// The span holding `t` (the last one whose start is <= t) and its local parameter.
+    fn locate(&self, t: f64) -> (SpanCurve<'_>, f64, f64) {
+        let i = self.spans.partition_point(|r| r.t0 <= t).saturating_sub(1);
+        let r = &self.spans[i];
+        let len = r.t1 - r.t0;
+        let curve = SpanCurve {
+            homogeneous: &self.coeffs[r.offset as usize..(r.offset + r.len) as usize],
+        };
+        (curve, ((t - r.t0) / len).clamp(0.0, 1.0), len)
+    }
+
+    fn curvature(&self, t: f64) -> f64 {
+        let (c, u, _) = self.locate(t);
+        c.curvature(u)
+    }
+}
+
+impl PlanarCurve for PieceCurve<'_> {
+    fn point_and_derivative(&self, t: f64) -> (Point2<f64>, Vector2<f64>) {
+        let (c, u, len) = self.locate(t);
+        let (p, d) = c.point_and_derivative(u);
+        (p, d / len)
+    }
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -310,7 +351,7 @@ impl BiarcTree {
             let mut u0 = 0.0;
             for u1 in splits.iter().map(|s| s.0).chain(std::iter::once(1.0)) {
                 let t = |u: f64| r.t0 + (r.t1 - r.t0) * u;
-                self.spirals.push(SpiralInfo {
+                let info = SpiralInfo {
                     piece: r.piece as usize,
                     param_range: (t(u0), t(u1)),
                     root: 0,
@@ -318,26 +359,98 @@ impl BiarcTree {
                         min: first,
                         max: first,
                     },
-                    span: si as u32,
-                    u_range: (u0, u1),
-                });
+                    spans: (si as u32, si as u32),
+                };
+                let merged = u0 == 0.0
+                    && self.spirals.last().is_some_and(|prev| {
+                        prev.spans.1 as usize + 1 == si
+                            && prev.piece == info.piece
+                            && prev.param_range.1 == r.t0
+                            && self.joins_as_spiral(prev, &info)
+                    });
+                if merged {
+                    let prev = self.spirals.last_mut().expect("checked above");
+                    prev.param_range.1 = info.param_range.1;
+                    prev.spans.1 = si as u32;
+                } else {
+                    self.spirals.push(info);
+                }
                 u0 = u1;
             }
         }
     }
 
+    /// Whether spiral `b` (starting at a knot) continues spiral `a` (ending there) as one
+    /// spiral: G1 at the knot, the same signs of rho', z' and kappa, and kappa monotone in the
+    /// same direction on both sides and across the knot (a C1 knot may jump in kappa).
+    fn joins_as_spiral(&self, a: &SpiralInfo, b: &SpiralInfo) -> bool {
+        let ca = self.piece_curve(a);
+        let cb = self.piece_curve(b);
+        let knot = a.param_range.1;
+        let (_, da) = ca.point_and_derivative(knot);
+        let (_, db) = cb.point_and_derivative(knot);
+        let (na, nb) = (da.norm(), db.norm());
+        if !(na > 0.0 && nb > 0.0)
+            || cross(da, db).abs() > MERGE_TANGENT_TOL * na * nb
+            || da.dot(&db) <= 0.0
+        {
+            return false;
+        }
+        let mid = |s: &SpiralInfo, c: &PieceCurve| {
+            c.point_and_derivative(0.5 * (s.param_range.0 + s.param_range.1))
+                .1
+        };
+        let (ma, mb) = (mid(a, &ca), mid(b, &cb));
+        let sign = |x: f64, scale: f64| {
+            if x.abs() <= MERGE_ZERO_REL * scale {
+                0
+            } else if x > 0.0 {
+                1
+            } else {
+                -1
+            }
+        };
+        let scale = ma.norm().max(mb.norm());
+        if sign(ma.x, scale) != sign(mb.x, scale) || sign(ma.y, scale) != sign(mb.y, scale) {
+            return false;
+        }
+        let ka = [ca.curvature(a.param_range.0), ca.curvature(knot)];
+        let kb = [cb.curvature(knot), cb.curvature(b.param_range.1)];
+        let k_mid = [
+            ca.curvature(0.5 * (a.param_range.0 + knot)),
+            cb.curvature(0.5 * (knot + b.param_range.1)),
+        ];
+        let k_scale = ka.iter().chain(&kb).fold(0.0f64, |m, k| m.max(k.abs()));
+        let k_sign = sign(k_mid[0], k_scale);
+        if k_sign == 0 || k_sign != sign(k_mid[1], k_scale) {
+            return false;
+        }
+        let dirs = [
+            sign(ka[1] - ka[0], k_scale),
+            sign(kb[0] - ka[1], k_scale),
+            sign(kb[1] - kb[0], k_scale),
+        ];
+        !(dirs.contains(&1) && dirs.contains(&-1))
+    }
+
+    fn piece_curve(&self, s: &SpiralInfo) -> PieceCurve<'_> {
+        PieceCurve {
+            spans: &self.spans[s.spans.0 as usize..=s.spans.1 as usize],
+            coeffs: &self.coeffs,
+        }
+    }
+
     fn build_spiral(&mut self, s: usize) -> Result<(), TreeError> {
         let info = self.spirals[s];
-        let span = self.spans[info.span as usize];
-        let piece = span.piece as usize;
+        let piece = info.piece;
         let root = self.nodes.len() as u32;
         self.spirals[s].root = root;
         self.nodes.push(placeholder());
         let (a, b) = {
-            let c = self.span_curve(info.span as usize);
+            let c = self.piece_curve(&info);
             (
-                CurveSample::at(&c, info.u_range.0),
-                CurveSample::at(&c, info.u_range.1),
+                CurveSample::at(&c, info.param_range.0),
+                CurveSample::at(&c, info.param_range.1),
             )
         };
         self.stack.clear();
@@ -347,10 +460,11 @@ impl BiarcTree {
             b,
             depth: 0,
         });
-        let to_t = |u: f64| span.t0 + (span.t1 - span.t0) * u;
+        let (s0, s1) = (info.spans.0 as usize, info.spans.1 as usize);
         while let Some(job) = self.stack.pop() {
-            let curve = SpanCurve {
-                homogeneous: &self.coeffs[span.offset as usize..(span.offset + span.len) as usize],
+            let curve = PieceCurve {
+                spans: &self.spans[s0..=s1],
+                coeffs: &self.coeffs,
             };
             let fit = fit_biarc(&curve, &job.a, &job.b)
                 .map_err(|source| TreeError::Fit { piece, source })?;
@@ -362,8 +476,8 @@ impl BiarcTree {
                 });
             }
             let mut node = make_node(&fit, s as u32, job.depth);
-            node.t0 = to_t(job.a.t);
-            node.t1 = to_t(job.b.t);
+            node.t0 = job.a.t;
+            node.t1 = job.b.t;
             self.max_depth = self.max_depth.max(job.depth);
             if !leaf {
                 let first = self.nodes.len() as u32;

@@ -250,6 +250,31 @@ impl ProfileArc {
     }
 }
 
+/// Relative distance (to the arc radius) below which an arc centre is put on the axis: a
+/// major circle of radius 1e-16 would otherwise be a circle of pure round-off whose
+/// meridian planes are meaningless. 1e-10 keeps the surface change far below any eps.
+pub const AXIS_SNAP: f64 = 1e-10;
+
+/// Relative size (to the configuration) below which a boundary parallel is a point.
+pub const POINT_SNAP: f64 = 1e-12;
+
+fn snapped(arc: ProfileArc) -> ProfileArc {
+    match arc {
+        ProfileArc::Arc {
+            center,
+            radius,
+            phi_start,
+            sweep,
+        } if center.x != 0.0 && center.x.abs() <= AXIS_SNAP * radius => ProfileArc::Arc {
+            center: Point2::new(0.0, center.y),
+            radius,
+            phi_start,
+            sweep,
+        },
+        a => a,
+    }
+}
+
 /// Meridian frame of the local z axis at revolution angle `theta`: `e_rho(theta)`.
 pub(crate) fn e_rho(theta: f64) -> Vector3<f64> {
     Vector3::new(theta.cos(), theta.sin(), 0.0)
@@ -279,8 +304,21 @@ pub enum Core {
 }
 
 impl Patch {
+    /// A patch of `arc`, with an arc centre closer to the axis than [`AXIS_SNAP`] times the
+    /// radius moved onto the axis (a sphere patch). The surface moves by at most
+    /// [`Patch::snap_error`]; callers that certify bounds add it to their eps.
     pub fn new(arc: ProfileArc) -> Self {
-        Patch { arc }
+        Patch { arc: snapped(arc) }
+    }
+
+    /// How far [`Patch::new`] moved the surface of `arc` (0 unless snapped).
+    pub fn snap_error(arc: &ProfileArc) -> f64 {
+        match (*arc, snapped(*arc)) {
+            (ProfileArc::Arc { center: a, .. }, ProfileArc::Arc { center: b, .. }) => {
+                (a - b).norm()
+            }
+            _ => 0.0,
+        }
     }
 
     /// The core (major circle or cone line) of the patch.

@@ -33,7 +33,7 @@
 //! [`PatchDistance::interior_pairs`]: at the deepest point of such a loop the common normal
 //! has both points inside the other solid, which the caller (who knows the solids) tests.
 
-use super::patch::{e_rho, lift, Core, Patch, ProfileArc};
+use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
 use super::sweep::{critical_angles, level_angles, ParamCircle, RadialField};
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
@@ -363,7 +363,7 @@ fn boundary_vs_patch(
     let mut thetas = Vec::with_capacity(48);
     let mut feet = Vec::with_capacity(8);
     for e in g.boundary() {
-        if e.x.abs() <= 1e-300 {
+        if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
             let x = pos_og * Point3::new(0.0, 0.0, e.y);
             let (_, c) = o.point_distance(&x);
             emit(x, c);
@@ -427,13 +427,13 @@ fn parallel_pair(
         };
         lift(ea, &e)
     };
-    if eb.x.abs() <= 1e-300 {
+    if eb.x.abs() <= POINT_SNAP * (1.0 + eb.y.abs()) {
         let x = pos_ab * Point3::new(0.0, 0.0, eb.y);
         emit(closest_on_a(&x), x);
         return;
     }
     let circle = ParamCircle::parallel(eb.x, eb.y, pos_ab);
-    if ea.x.abs() <= 1e-300 {
+    if ea.x.abs() <= POINT_SNAP * (1.0 + ea.y.abs()) {
         // A's parallel is a point: closest point of B's circle to it.
         let pa = Point3::new(0.0, 0.0, ea.y);
         let pos_ba = pos_ab.inverse();
@@ -887,6 +887,33 @@ mod tests {
             "{} failures of {n}: {fails:#?}",
             fails.len()
         );
+    }
+
+    /// Arc centres a hair off the axis (round-off of a fitted sphere), snapped or not.
+    #[test]
+    fn near_axis_centres_match_reference() {
+        let mut rng = Rng(17);
+        let mut fails = Vec::new();
+        for i in 0..60 {
+            let off = [1e-16, -1e-13, 1e-9, -1e-7, 1e-5][i % 5];
+            let piece = |rng: &mut Rng| ProfileArc::Arc {
+                center: Point2::new(off, rng.f() - 0.5),
+                radius: 0.3 + 0.5 * rng.f(),
+                phi_start: -1.5,
+                sweep: 1.0 + 2.0 * rng.f(),
+            };
+            let a = Patch::new(piece(&mut rng));
+            let b = if i % 2 == 0 {
+                Patch::new(piece(&mut rng))
+            } else {
+                Patch::new(random_piece(&mut rng))
+            };
+            let pos = random_pose(&mut rng, 3.0);
+            if let Err(e) = try_check(&a, &b, &pos, &format!("case {i} off {off:e}")) {
+                fails.push(e);
+            }
+        }
+        assert!(fails.is_empty(), "{} failures: {fails:#?}", fails.len());
     }
 
     #[test]

@@ -153,9 +153,10 @@ impl QueryTree {
             let l = &leaves[0];
             let start = self.patches.len() as u32;
             self.patches.extend(l.pieces.iter().map(|p| Patch::new(*p)));
+            let snap = l.pieces.iter().map(Patch::snap_error).fold(0.0, f64::max);
             self.nodes.push(Node {
-                bound: l.bound,
-                eps: l.eps,
+                bound: l.bound.inflated(snap),
+                eps: l.eps + snap,
                 children: [NO_CHILD, NO_CHILD],
                 patch_start: start,
                 patch_end: self.patches.len() as u32,
@@ -233,12 +234,11 @@ impl QueryTree {
             node.children = [a, b];
         } else {
             node.patch_start = self.patches.len() as u32;
-            self.patches.extend(
-                n.arcs()
-                    .iter()
-                    .filter(|a| a.length > 0.0)
-                    .map(|a| Patch::new(piece_of_arc(a))),
-            );
+            for a in n.arcs().iter().filter(|a| a.length > 0.0) {
+                let piece = piece_of_arc(a);
+                node.eps += Patch::snap_error(&piece);
+                self.patches.push(Patch::new(piece));
+            }
             node.patch_end = self.patches.len() as u32;
         }
         self.nodes.push(node);

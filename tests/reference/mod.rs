@@ -33,6 +33,11 @@ use std::f64::consts::TAU;
 /// direction of nearly zero curvature.
 pub const REFERENCE_ERROR: f64 = 1e-7;
 
+/// Cap on distance evaluations per pattern-search start: in flat valleys (parallel
+/// faces, continua) tiny improvements could otherwise continue for very many steps; the
+/// value reached is still a realised distance.
+const MAX_PATTERN_EVALS: usize = 3000;
+
 /// Samples per profile piece for the polyline.
 const POLY_SAMPLES: usize = 64;
 
@@ -175,7 +180,9 @@ fn one_side(
     for (mut v, i, mut t, mut th) in starts {
         let (t0, t1) = b.profile.pieces()[i].domain();
         let (mut ht, mut hth) = ((t1 - t0) / n_t as f64, TAU / n_theta as f64);
-        while ht > 1e-13 * (t1 - t0) || hth > 1e-13 {
+        let mut evals = 0usize;
+        while (ht > 1e-13 * (t1 - t0) || hth > 1e-13) && evals < MAX_PATTERN_EVALS {
+            evals += 8;
             let mut moved = false;
             for (dt, dth) in [
                 (ht, 0.0),

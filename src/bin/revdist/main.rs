@@ -11,6 +11,7 @@ mod figures;
 mod input;
 mod models;
 mod profile;
+mod tree;
 
 /// Result of a subcommand.
 pub type CmdResult = Result<(), Box<dyn std::error::Error>>;
@@ -33,6 +34,8 @@ enum Command {
     Export(export::Args),
     /// Draw every built-in model and frames of the deformable model into a directory.
     Figures(figures::Args),
+    /// Build the biarc tree of a profile: node counts, depth, bytes, build time; optional SVG.
+    Tree(tree::Args),
     /// Minimum distance between two posed solids (one query, or JSON lines with --batch).
     Distance(distance::Args),
 }
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
         Command::Profile(args) => profile::run(args),
         Command::Export(args) => export::run(args),
         Command::Figures(args) => figures::run(args),
+        Command::Tree(args) => tree::run(args),
         Command::Distance(args) => distance::run(args),
     };
     match result {
