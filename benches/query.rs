@@ -51,6 +51,7 @@ fn per_pair(c: &mut Criterion) {
     for eps in EPS {
         let solids: Vec<Solid> = MODELS.iter().map(|n| solid(n, eps)).collect();
         let mut group = c.benchmark_group(format!("query_eps_{eps:e}"));
+        group.sample_size(10);
         for i in 0..MODELS.len() {
             for j in i..MODELS.len() {
                 let bs: Vec<Solid> = poses.iter().map(|p| solids[j].with_pose(*p)).collect();
@@ -90,6 +91,7 @@ fn bound_kinds(c: &mut Criterion) {
     let b = solid("lightmill", 1e-4);
     let bs: Vec<Solid> = poses.iter().map(|p| b.with_pose(*p)).collect();
     let mut group = c.benchmark_group("bounds_pawn_lightmill_1e-4");
+    group.sample_size(10);
     for kind in [BoundKind::Sphere, BoundKind::Torus] {
         let opts = QueryOptions {
             bound: kind,
