@@ -31,10 +31,12 @@ pub const MAX_BINORMALS: usize = 16;
 /// precision, so isolated roots come out to full double accuracy.
 const S_TOL: f64 = 1e-15;
 
-/// Newton iterations on the geometric equations. From a root accurate to ~1e-8 (double
-/// roots) quadratic convergence needs 3 steps; 8 allow for slow convergence at degenerate
-/// critical points, whose steps are then tiny anyway.
-const NEWTON_STEPS: usize = 8;
+/// Cap on Newton iterations on the geometric equations (the loop exits as soon as a step is
+/// below 1e-16). From a root accurate to ~1e-8 (double roots) quadratic convergence needs 3
+/// steps. At degenerate critical points (tangent circles: the gradient vanishes to third
+/// order) Newton converges linearly with ratio 2/3, and a triple root is only known to
+/// ~eps^(1/3) ~ 5e-6; 64 steps shrink that by (2/3)^64 ~ 5e-12.
+const NEWTON_STEPS: usize = 64;
 
 /// A polished pair is accepted as a binormal when both residuals (A-B).A'/|A'| and
 /// (A-B).B'/|B'| are below this (local units, configuration scale 1). Roots of the squared
@@ -171,6 +173,37 @@ fn polish(lp: &LocalPair, phi0: f64, theta0: f64) -> (f64, f64, f64) {
         let r = residual(lp, phi, theta);
         if r < best.2 {
             best = (phi, theta, r);
+        }
+        if dp.abs() <= 1e-16 && dt.abs() <= 1e-16 {
+            break;
+        }
+    }
+    best
+}
+
+/// Newton polishing of a closest-pair candidate, judged by the distance itself: at
+/// degenerate minima (tangent circles) the residual is at rounding level long before the
+/// distance is, while Newton keeps converging linearly. Stops after 3 steps without gain.
+fn polish_min(lp: &LocalPair, phi0: f64, theta0: f64) -> (f64, f64, f64) {
+    let (mut phi, mut theta) = (phi0, theta0);
+    let mut best = (phi, theta, (lp.pa(phi) - lp.pb(theta)).norm());
+    let mut stall = 0;
+    for _ in 0..NEWTON_STEPS {
+        let (dp, dt, _, _) = newton_step(lp, phi, theta);
+        if !(dp.abs() < 0.5 && dt.abs() < 0.5) {
+            break;
+        }
+        phi -= dp;
+        theta -= dt;
+        let d = (lp.pa(phi) - lp.pb(theta)).norm();
+        if d < best.2 {
+            best = (phi, theta, d);
+            stall = 0;
+        } else {
+            stall += 1;
+            if stall >= 3 {
+                break;
+            }
         }
         if dp.abs() <= 1e-16 && dt.abs() <= 1e-16 {
             break;
@@ -527,8 +560,7 @@ fn local_min(lp: &LocalPair) -> Option<(f64, f64, f64, usize, Multiplicity)> {
         let m = sampled_min(lp);
         return Some((m.0, m.1, m.2, 1, m.3));
     }
-    let (p, t, _) = polish(lp, best.0, best.1);
-    let d = (lp.pa(p) - lp.pb(t)).norm();
+    let (p, t, d) = polish_min(lp, best.0, best.1);
     if d < best.2 {
         best = (p, t, d);
     }

@@ -48,7 +48,7 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
             dist: (pa - pb).norm(),
         }
     };
-    if delta <= TIE_REL_TOL {
+    if delta == 0.0 {
         // Coaxial: every pair at equal angle is a binormal; one representative.
         let rep = mk(0.0, 1.0, 0.0, 1.0);
         let rep_far = mk(0.0, 1.0, 0.0, -1.0);
@@ -101,11 +101,18 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
         }
         n_closest = if y <= TIE_REL_TOL { 1 } else { 2 };
     }
+    // Centres within the tie tolerance of a common axis: the distance above is exact for
+    // the given data, but the closest pair is only determined up to that tolerance.
+    let multiplicity = if delta <= TIE_REL_TOL {
+        Multiplicity::ContinuumOnBoth
+    } else {
+        Multiplicity::Finite
+    };
     ParallelSolution {
         binormals,
         n_binormals: 4,
         closest,
         n_closest,
-        multiplicity: Multiplicity::Finite,
+        multiplicity,
     }
 }

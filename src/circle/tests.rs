@@ -466,3 +466,37 @@ proptest! {
         prop_assert!((d1 - d0).abs() <= dh + 2e-12 * scale);
     }
 }
+
+#[test]
+fn tangent_coplanar_circles_tilted_about_the_contact_tangent() {
+    // Coplanar externally tangent circles, B tilted by 2e-12 about the line through its
+    // centre and the contact point: they still touch. The contact is a triple root of the
+    // binormal polynomial (known to ~eps^(1/3)); Newton polishing must bring the distance to
+    // rounding level (found by `verify circles`).
+    let a = Circle3::with_u_axis(
+        Point3::new(-7.5, 0.875, -3.5),
+        Vector3::new(
+            -0.7563719862227325,
+            -0.6103329506314581,
+            -0.23536165327210107,
+        ),
+        Vector3::new(-0.547646383467279, 0.7876004592422504, -0.28243398392652125),
+        1.0,
+    )
+    .unwrap();
+    let b = Circle3::with_u_axis(
+        Point3::new(-8.321469575200918, 2.0564006888633752, -3.9236509758897817),
+        Vector3::new(
+            -0.756371986223448,
+            -0.6103329506312887,
+            -0.23536165327024114,
+        ),
+        Vector3::new(-0.547646383467279, 0.7876004592422504, -0.28243398392652125),
+        0.5,
+    )
+    .unwrap();
+    for (x, y) in [(&a, &b), (&b, &a)] {
+        let m = min_distance(x, y);
+        assert!(m.distance <= 1e-13, "{m:?}");
+    }
+}

@@ -193,7 +193,8 @@ pub fn odd_roots(p: &Bernstein, t_tol: f64) -> Vec<f64> {
     let m = p.coeffs.len();
     let mut scratch = vec![0.0; kernel::odd_scratch_len(m)];
     let mut out = Vec::new();
-    kernel::odd_roots_into(&p.coeffs, 0.0, 1.0, t_tol, &mut scratch, &mut |x| {
+    let noise = kernel::noise_of(&p.coeffs, 0.0);
+    kernel::odd_roots_into(&p.coeffs, 0.0, 1.0, t_tol, noise, &mut scratch, &mut |x| {
         out.push(x)
     });
     out

@@ -136,9 +136,18 @@ pub const fn odd_scratch_len(n_coeffs: usize) -> usize {
     2 * n_coeffs
 }
 
+/// Scratch length of [`odd_roots_guarded`] with a guard of `n_guard` coefficients.
+pub const fn guarded_scratch_len(n_coeffs: usize, n_guard: usize) -> usize {
+    2 * n_coeffs + n_guard
+}
+
 /// Finds the roots of odd multiplicity (sign changes) of `c` in the open interval (lo, hi)
 /// of [0, 1], each to within `t_tol`, and passes them in increasing order to `sink`.
-/// `scratch` must hold [`odd_scratch_len`] values.
+/// `scratch` must hold [`odd_scratch_len`] values. A piece whose coefficients are all within
+/// `noise_abs` of zero is indistinguishable from the zero polynomial: it is not subdivided
+/// further (its midpoint is reported if its end values differ in sign). Without this stop,
+/// rounding noise around an even root would make every sub-piece show sign changes down to
+/// `t_tol`.
 ///
 /// Subdivision with the Bernstein sign-variation test: V = 0 discards a piece, V = 1 means
 /// exactly one simple crossing, which a safeguarded Newton iteration converges on. Pieces
@@ -148,6 +157,26 @@ pub fn odd_roots_into(
     lo: f64,
     hi: f64,
     t_tol: f64,
+    noise_abs: f64,
+    scratch: &mut [f64],
+    sink: &mut impl FnMut(f64),
+) {
+    odd_roots_guarded(c, None, lo, hi, t_tol, noise_abs, scratch, sink);
+}
+
+/// [`odd_roots_into`], skipping every piece on which the optional `guard` polynomial
+/// (same length as `c`, with its absolute noise) is bounded away from zero: its restricted
+/// coefficients all exceed the noise with one sign. Used to look for even roots of `guard`
+/// among the roots of its derivative `c` only where `guard` can vanish. `scratch` needs
+/// [`odd_scratch_len`] + `guard.len()` values when a guard is given.
+#[allow(clippy::too_many_arguments)]
+pub fn odd_roots_guarded(
+    c: &[f64],
+    guard: Option<(&[f64], f64)>,
+    lo: f64,
+    hi: f64,
+    t_tol: f64,
+    noise_abs: f64,
     scratch: &mut [f64],
     sink: &mut impl FnMut(f64),
 ) {
@@ -156,6 +185,7 @@ pub fn odd_roots_into(
         return;
     }
     let (piece, rest) = scratch.split_at_mut(m);
+    let (rest, gpiece) = rest.split_at_mut(m);
     let tol = t_tol.max(MIN_WIDTH);
     let mut stack = [(0.0f64, 0.0f64); STACK_CAP];
     let mut top = 1;
@@ -163,6 +193,13 @@ pub fn odd_roots_into(
     while top > 0 {
         top -= 1;
         let (a, b) = stack[top];
+        if let Some((g, g_noise)) = guard {
+            let gp = &mut gpiece[..g.len()];
+            restrict_into(g, a, b, gp);
+            if gp.iter().all(|&x| x > g_noise) || gp.iter().all(|&x| x < -g_noise) {
+                continue;
+            }
+        }
         restrict_into(c, a, b, piece);
         let (f0, f1) = (piece[0], piece[m - 1]);
         if f1 == 0.0 && b < hi {
@@ -188,6 +225,12 @@ pub fn odd_roots_into(
         }
         let v = sign_variations(piece);
         if v == 0 {
+            continue;
+        }
+        if piece.iter().all(|x| x.abs() <= noise_abs) {
+            if f0 * f1 < 0.0 {
+                sink(0.5 * (a + b));
+            }
             continue;
         }
         if v == 1 && f0 != 0.0 && f1 != 0.0 {
@@ -228,7 +271,12 @@ fn dpiece_full(rest: &mut [f64], m: usize) -> &mut [f64] {
 /// local parameter to within `x_tol`. Newton from the control-polygon crossing, falling back
 /// to bisection whenever a step leaves the bracket or fails to halve the residual.
 fn refine_bracketed(q: &[f64], dq: &[f64], x_tol: f64) -> f64 {
+    // Below a few ulps of [0, 1] Newton steps are rounding noise.
+    let x_tol = x_tol.max(4.0 * f64::EPSILON);
     let n = q.len() - 1;
+    // Values below the evaluation rounding bound are zero for all purposes: stop there
+    // (Newton steps computed from such values are noise).
+    let f_noise = EVAL_NOISE_PER_DEGREE * n as f64 * q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let neg_at_lo = q[0] < 0.0;
     let (mut x0, mut x1) = (0.0f64, 1.0f64);
     // Start where the control polygon crosses zero.
@@ -242,7 +290,7 @@ fn refine_bracketed(q: &[f64], dq: &[f64], x_tol: f64) -> f64 {
     let mut dx_old = 1.0f64;
     for _ in 0..MAX_REFINE_STEPS {
         let f = eval(q, x);
-        if f == 0.0 {
+        if f.abs() <= f_noise {
             return x;
         }
         if (f < 0.0) == neg_at_lo {
@@ -259,7 +307,7 @@ fn refine_bracketed(q: &[f64], dq: &[f64], x_tol: f64) -> f64 {
         if xn > x0 && xn < x1 && (2.0 * step).abs() <= dx_old.abs() {
             dx_old = step;
             x = xn;
-            if step.abs() <= 0.25 * x_tol {
+            if step.abs() <= x_tol {
                 return x;
             }
         } else {
@@ -268,6 +316,15 @@ fn refine_bracketed(q: &[f64], dq: &[f64], x_tol: f64) -> f64 {
         }
     }
     x
+}
+
+/// Absolute noise of the coefficients of any restriction of `c` to a sub-interval: the
+/// caller's `coeff_noise` plus de Casteljau rounding (convex combinations: at most
+/// [`EVAL_NOISE_PER_DEGREE`] n times the largest coefficient).
+pub fn noise_of(c: &[f64], coeff_noise: f64) -> f64 {
+    let n = (c.len() - 1).max(1) as f64;
+    let max = c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    coeff_noise + EVAL_NOISE_PER_DEGREE * n * max
 }
 
 /// Kind of a root candidate collected by [`roots_into`].
@@ -283,7 +340,7 @@ pub enum RootKind {
 
 /// Scratch length (in f64) needed by [`roots_into`] for `n + 1` coefficients.
 pub const fn roots_scratch_len(n_coeffs: usize) -> usize {
-    3 * n_coeffs
+    4 * n_coeffs
 }
 
 /// Candidate-buffer length needed by [`roots_into`] for `n + 1` coefficients.
@@ -327,7 +384,7 @@ pub fn roots_into(
     }
     {
         let mut odd = |x: f64| push(x, RootKind::Odd, &mut count);
-        odd_roots_into(c, 0.0, 1.0, t_tol, rest, &mut odd);
+        odd_roots_into(c, 0.0, 1.0, t_tol, noise_of(c, coeff_noise), rest, &mut odd);
     }
     if m > 2 {
         let mut crit = |x: f64| {
@@ -335,7 +392,11 @@ pub fn roots_into(
                 push(x, RootKind::Even, &mut count);
             }
         };
-        odd_roots_into(dc, 0.0, 1.0, t_tol, rest, &mut crit);
+        // Derivative coefficients n (b_{i+1} - b_i) carry 2 n times the coefficient noise.
+        let d_noise = 2.0 * (m - 1) as f64 * coeff_noise;
+        let guard = Some((c, noise_of(c, coeff_noise)));
+        let dn = noise_of(dc, d_noise);
+        odd_roots_guarded(dc, guard, 0.0, 1.0, t_tol, dn, rest, &mut crit);
     }
     if c[m - 1].abs() <= zero_tolerance(c, 1.0, coeff_noise) {
         push(1.0, RootKind::Even, &mut count);
