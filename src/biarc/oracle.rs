@@ -64,25 +64,6 @@ pub fn sampled_hausdorff<C: PlanarCurve + ?Sized>(
 /// true for a bracket of two sample spacings around the nearest sample of a dense sampling).
 fn golden_distance<C: PlanarCurve + ?Sized>(curve: &C, x: Point2<f64>, lo: f64, hi: f64) -> f64 {
     let f = |t: f64| (curve.point_and_derivative(t).0 - x).norm();
-    let r = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (lo, hi);
-    let mut c = b - r * (b - a);
-    let mut d = a + r * (b - a);
-    let (mut fc, mut fd) = (f(c), f(d));
-    for _ in 0..GOLDEN_ITERS {
-        if fc < fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - r * (b - a);
-            fc = f(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + r * (b - a);
-            fd = f(d);
-        }
-    }
-    fc.min(fd).min(f(lo)).min(f(hi))
+    let (_, inner) = crate::poly::minimize::golden_section_min(f, lo, hi, GOLDEN_ITERS);
+    inner.min(f(lo)).min(f(hi))
 }

@@ -630,15 +630,6 @@ fn sampled_min(lp: &LocalPair) -> (f64, f64, f64, Multiplicity) {
 
 /// Golden-section search for a minimum of a unimodal `f` on [lo, hi] (80 steps shrink the
 /// bracket by 0.618^80 ~ 1e-17, i.e. to adjacent doubles for brackets of size ~1).
-pub fn golden_min(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..80 {
-        let (m1, m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if f(m1) < f(m2) {
-            hi = m2;
-        } else {
-            lo = m1;
-        }
-    }
-    0.5 * (lo + hi)
+pub fn golden_min(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    crate::poly::minimize::golden_section_min(f, lo, hi, 80).0
 }

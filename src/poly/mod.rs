@@ -10,6 +10,7 @@
 
 pub mod bernstein;
 pub mod fixed;
+pub mod minimize;
 pub mod solve;
 
 pub use bernstein::{odd_roots, roots, solve, Bernstein, RootSet};

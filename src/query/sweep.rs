@@ -176,22 +176,29 @@ fn field_scale(c: &ParamCircle, f: &RadialField) -> f64 {
 /// Root of a sign change of `g` on `[a, b]` (`ga = g(a)`) to full double precision, by the
 /// Illinois variant of regula falsi: the bracket always holds a sign change (as bisection's
 /// does), but convergence is superlinear, so a root costs ~10 evaluations instead of ~60.
-/// A bisection step is forced whenever a false-position step fails to halve the bracket.
+/// A bisection step replaces false position whenever the previous step failed to halve the
+/// bracket, which keeps the worst case linear.
 fn bisect(g: impl Fn(f64) -> f64, mut a: f64, mut b: f64, mut ga: f64) -> f64 {
     let mut gb = g(b);
     if gb == 0.0 {
         return b;
     }
     let mut side = 0i8;
-    for _ in 0..100 {
+    let mut last_width = f64::INFINITY;
+    for _ in 0..200 {
         let width = b - a;
-        let mut m = (a * gb - b * ga) / (gb - ga);
+        let mut m = if width > 0.5 * last_width {
+            0.5 * (a + b)
+        } else {
+            (a * gb - b * ga) / (gb - ga)
+        };
         if !(m > a && m < b) {
             m = 0.5 * (a + b);
         }
         if m <= a || m >= b {
             break;
         }
+        last_width = width;
         let gm = g(m);
         if gm == 0.0 {
             return m;
@@ -211,55 +218,14 @@ fn bisect(g: impl Fn(f64) -> f64, mut a: f64, mut b: f64, mut ga: f64) -> f64 {
             }
             side = 1;
         }
-        if b - a > 0.5 * width {
-            // Slow progress: one bisection step keeps the worst case linear.
-            let mid = 0.5 * (a + b);
-            if mid <= a || mid >= b {
-                break;
-            }
-            let gmid = g(mid);
-            if gmid == 0.0 {
-                return mid;
-            }
-            if gmid.signum() == ga.signum() {
-                a = mid;
-                ga = gmid;
-            } else {
-                b = mid;
-                gb = gmid;
-            }
-            side = 0;
-        }
     }
     0.5 * (a + b)
 }
 
-/// Golden-section minimisation of `g` on `[a, b]`.
-fn golden_min(g: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
-    const R: f64 = 0.618_033_988_749_894_8;
-    let mut x1 = b - R * (b - a);
-    let mut x2 = a + R * (b - a);
-    let (mut g1, mut g2) = (g(x1), g(x2));
-    for _ in 0..40 {
-        if g1 <= g2 {
-            b = x2;
-            x2 = x1;
-            g2 = g1;
-            x1 = b - R * (b - a);
-            g1 = g(x1);
-        } else {
-            a = x1;
-            x1 = x2;
-            g1 = g2;
-            x2 = a + R * (b - a);
-            g2 = g(x2);
-        }
-    }
-    if g1 <= g2 {
-        x1
-    } else {
-        x2
-    }
+/// Golden-section minimisation of `g` on `[a, b]` (40 steps: the bracket shrinks by 4e-9,
+/// and the caller polishes every candidate angle by exact measurement).
+fn golden_min(g: impl Fn(f64) -> f64, a: f64, b: f64) -> f64 {
+    crate::poly::minimize::golden_section_min(g, a, b, 40).0
 }
 
 #[cfg(test)]
