@@ -26,7 +26,7 @@ impl Rng {
         let axis = nalgebra::Unit::new_normalize(self.v() + Vector3::new(0.0, 0.0, 1e-3));
         Isometry3::from_parts(
             Translation3::from(self.v() * 5.0),
-            UnitQuaternion::from_axis_angle(&axis, self.f() * 6.28),
+            UnitQuaternion::from_axis_angle(&axis, self.f() * std::f64::consts::TAU),
         )
     }
 }

@@ -97,7 +97,8 @@ impl Circle3 {
         }
         let u = u_axis - n.into_inner() * n.dot(&u_axis);
         let un = u.norm();
-        if !(un > 1e-12 * u_axis.norm()) || un == 0.0 {
+        // `un` is finite here; reject a u axis (nearly) parallel to the normal.
+        if un <= 1e-12 * u_axis.norm() || un == 0.0 {
             return Err(CircleError::BadUAxis);
         }
         Ok(Self {

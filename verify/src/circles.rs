@@ -135,9 +135,9 @@ impl Rng {
 
 fn pow10(k: i32) -> Rational {
     if k >= 0 {
-        Rational::from(Rational::from(10).pow_ref_int(k))
+        Rational::from(10).pow_ref_int(k)
     } else {
-        Rational::from(1) / Rational::from(Rational::from(10).pow_ref_int(-k))
+        Rational::from(1) / Rational::from(10).pow_ref_int(-k)
     }
 }
 
@@ -195,7 +195,7 @@ pub fn scaled_case(rng: &mut Rng) -> Case {
         let rb = rat(rng.int(8, 128), 64) * pow10(kr);
         let gap = pow10(kg);
         let p = [Rational::from(1) + &gap, Rational::new(), Rational::new()];
-        let c = [0, 1, 2].map(|k| Rational::from(&p[k] - Rational::from(&rb * &rot[0][k])));
+        let c = [0, 1, 2].map(|k| &p[k] - Rational::from(&rb * &rot[0][k]));
         Case {
             family: "near-touching",
             label: format!("gap 1e{kg} rb~1e{kr}"),
@@ -207,9 +207,12 @@ pub fn scaled_case(rng: &mut Rng) -> Case {
     }
 }
 
-/// The degenerate catalogue (research notes section 2.1): (label, centre, rotation
-/// quaternion mapping z to the normal, radius, analytic distance when P vanishes).
-fn catalogue() -> Vec<(&'static str, [Rational; 3], [i64; 4], Rational, Option<f64>)> {
+/// One catalogued configuration: (label, centre, integer rotation quaternion mapping z to
+/// the normal, radius, analytic distance when the polynomial vanishes).
+type CatalogueEntry = (&'static str, [Rational; 3], [i64; 4], Rational, Option<f64>);
+
+/// The degenerate catalogue (research notes section 2.1).
+fn catalogue() -> Vec<CatalogueEntry> {
     let z = Rational::new;
     // Integer quaternions with rational rotations: (2,1,0,0) rotates z by atan(4/3) about x:
     // normal (0, -4/5, 3/5); (3,0,1,0) rotates z about y: normal (3/5, 0, 4/5).

@@ -245,7 +245,7 @@ impl SturmSeq {
             mag += Float::with_val(SIGN_PREC, c.abs_ref());
         }
         let n = self.approx[k].len() as u32 + 2;
-        let bound = mag * (4 * n) >> (SIGN_PREC as i32 - 2);
+        let bound = (mag * (4 * n)) >> (SIGN_PREC as i32 - 2);
         if Float::with_val(SIGN_PREC, acc.abs_ref()) > bound {
             acc.cmp0().unwrap_or(Ordering::Equal)
         } else {
@@ -262,7 +262,7 @@ fn changes_at_inf(seq: &[RPoly], positive: bool) -> usize {
     sign_changes(seq.iter().map(|p| {
         let p = trim(p.clone());
         let lc = p.last().unwrap().cmp0();
-        if positive || (p.len() - 1) % 2 == 0 {
+        if positive || (p.len() - 1).is_multiple_of(2) {
             lc
         } else {
             lc.reverse()
@@ -326,7 +326,7 @@ impl ExactPair {
         };
         let wk = |k: usize| {
             padd(
-                &pscale(&s_t, &Rational::from(-comp(k, &self.u))),
+                &pscale(&s_t, &(-comp(k, &self.u))),
                 &pscale(&c_t, &comp(k, &self.v)),
             )
         };

@@ -44,6 +44,9 @@ pub struct Args {
     /// Anytime budget: stop after this many node pairs with the bounds reached.
     #[arg(long)]
     max_node_pairs: Option<usize>,
+    /// Anytime budget: stop after this many milliseconds with the bounds reached.
+    #[arg(long)]
+    max_time_ms: Option<f64>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -171,11 +174,18 @@ impl SolidCache {
 
 pub fn run(args: Args) -> CmdResult {
     check_tolerance(args.tolerance)?;
+    let max_time = match args.max_time_ms {
+        Some(ms) if ms.is_finite() && ms > 0.0 => {
+            Some(std::time::Duration::from_secs_f64(ms / 1e3))
+        }
+        Some(ms) => return Err(format!("--max-time-ms must be a positive number, got {ms}").into()),
+        None => None,
+    };
     let opts = QueryOptions {
         tolerance: args.tolerance,
         budget: Budget {
             max_node_pairs: args.max_node_pairs,
-            max_time: None,
+            max_time,
         },
         refine: args.refine,
         ..QueryOptions::default()
