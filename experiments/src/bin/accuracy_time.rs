@@ -205,16 +205,15 @@ fn query_rows(poses: usize) -> Result<Vec<QueryRow>, Box<dyn std::error::Error>>
                     width = width.max(d.upper - d.lower);
                 }
                 let n = poses as f64;
-                let mut sorted = times.clone();
-                sorted.sort_by(f64::total_cmp);
+                let median_us = median(&mut times); // sorts `times`
                 rows.push(QueryRow {
                     a: PAPER_MODELS[i].into(),
                     b: PAPER_MODELS[j].into(),
                     eps,
                     queries: poses,
                     overlaps,
-                    median_us: median(&mut times),
-                    p90_us: sorted[(0.9 * (n - 1.0)).round() as usize],
+                    median_us,
+                    p90_us: times[(0.9 * (n - 1.0)).round() as usize],
                     node_pairs: pairs / n,
                     leaf_tests: leaves / n,
                     max_width: width,
@@ -339,7 +338,6 @@ fn write_query_outputs(
     let pairs: Vec<(String, String)> = {
         let mut v: Vec<(String, String)> =
             rows.iter().map(|r| (r.a.clone(), r.b.clone())).collect();
-        v.dedup();
         v.sort();
         v.dedup();
         v
