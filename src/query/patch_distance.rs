@@ -789,4 +789,4 @@ fn disk_vs_generators(
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -1,18 +1,8 @@
 use super::*;
 use crate::circle::{binormals, Multiplicity};
 use crate::query::binormal_kernel::parallel_circle;
+use crate::query::patch_distance::tests::Rng;
 use nalgebra::{Point2, Translation3, UnitQuaternion};
-
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// A toroidal patch in the half-plane rho >= 0 with `|sweep| <= max_sweep`; the arc centre
 /// may lie left of the axis.

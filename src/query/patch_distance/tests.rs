@@ -2,7 +2,7 @@ use super::*;
 use nalgebra::{Translation3, UnitQuaternion};
 use std::f64::consts::{PI, TAU};
 
-pub(crate) struct Rng(u64);
+pub(crate) struct Rng(pub(crate) u64);
 impl Rng {
     pub(crate) fn f(&mut self) -> f64 {
         self.0 = self
