@@ -16,6 +16,7 @@ pub mod bounds;
 pub mod containment;
 pub mod distance;
 pub mod gauss;
+pub mod line_field;
 pub mod patch;
 pub mod patch_distance;
 pub mod planar;

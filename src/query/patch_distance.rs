@@ -34,6 +34,7 @@
 //! has both points inside the other solid, which the caller (who knows the solids) tests.
 
 use super::binormal_kernel::{circle_torus_critical, interior_torus_torus, parallel_pair_closest};
+use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
 use super::sweep::{critical_angles, level_angles, level_crossings, ParamCircle, RadialField};
@@ -139,13 +140,13 @@ pub fn patch_distance_with(
         match (a.arc, b.arc) {
             _ if via_binormals => {}
             (ProfileArc::Arc { .. }, _) => {
-                interior_via_core(a, b, pos_ab, &mut |p, q| {
+                interior_via_core(a, b, pos_ab, opts.kernel, &mut |p, q| {
                     best.consider(p, q);
                     pairs.push((p, q));
                 });
             }
             (_, ProfileArc::Arc { .. }) => {
-                interior_via_core(b, a, &pos_ba, &mut |q, p| {
+                interior_via_core(b, a, &pos_ba, opts.kernel, &mut |q, p| {
                     let (p, q) = (pos_ab * p, pos_ab * q);
                     best.consider(p, q);
                     pairs.push((p, q));
@@ -327,6 +328,7 @@ fn interior_via_core(
     t: &Patch,
     o: &Patch,
     pos_to: &Isometry3<f64>,
+    kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
 ) {
     let Core::Circle { r_major, z, .. } = t.core() else {
@@ -339,8 +341,16 @@ fn interior_via_core(
     if r_major == 0.0 {
         thetas.push(0.0);
     } else {
-        for s in [1.0, -1.0] {
-            critical_angles(&major, &core_field(o, s), &mut thetas);
+        let exact = match (kernel, o.core()) {
+            (Kernel::Binormals, Core::Line { n, .. }) => {
+                line_field_critical(&major, n, &mut thetas)
+            }
+            _ => false,
+        };
+        if !exact {
+            for s in [1.0, -1.0] {
+                critical_angles(&major, &core_field(o, s), &mut thetas);
+            }
         }
     }
     let mut feet = Vec::with_capacity(8);
@@ -445,6 +455,15 @@ fn boundary_vs_patch(
                     thetas.extend(crossings);
                     true
                 }
+            }
+            (Kernel::Binormals, Core::Line { n, c }) => {
+                let start = thetas.len();
+                let ok = line_field_critical(&circle, n, &mut thetas)
+                    && line_field_levels(&circle, n, c, &mut thetas);
+                if !ok {
+                    thetas.truncate(start);
+                }
+                ok
             }
             _ => false,
         };
