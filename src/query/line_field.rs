@@ -18,7 +18,7 @@
 //! every caller measures each angle exactly, so extra angles are harmless, and none is lost.
 
 use super::sweep::ParamCircle;
-use crate::poly::{self, Bernstein, RootSet};
+use crate::poly::solve::{roots_candidate_len, roots_into, roots_scratch_len, RootKind};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
@@ -31,35 +31,70 @@ const S_TOL: f64 = 1e-15;
 /// (same reasoning as the circle module's degree-8 polynomial).
 const COEFF_NOISE_FACTOR: f64 = 64.0 * f64::EPSILON;
 
-/// A quadratic in `s` from its values at `s = 0, 1/2, 1` (Bernstein form).
-fn quadratic(f: impl Fn(f64) -> f64) -> Bernstein {
-    let (f0, fh, f1) = (f(-1.0), f(0.0), f(1.0)); // w = 2 s - 1
-    Bernstein::new(vec![f0, 2.0 * fh - 0.5 * (f0 + f1), f1])
+/// Bernstein coefficients of a polynomial of degree `N - 1` on `s` in [0, 1].
+type Poly<const N: usize> = [f64; N];
+
+/// A quadratic in `s` from its values at `w = 2 s - 1 = -1, 0, 1`.
+fn quadratic(f: impl Fn(f64) -> f64) -> Poly<3> {
+    let (f0, fh, f1) = (f(-1.0), f(0.0), f(1.0));
+    [f0, 2.0 * fh - 0.5 * (f0 + f1), f1]
 }
 
-fn lin(terms: &[(f64, &Bernstein)]) -> Bernstein {
-    let n = terms[0].1.coeffs().len();
-    Bernstein::new(
-        (0..n)
-            .map(|i| terms.iter().map(|(k, p)| k * p.coeffs()[i]).sum())
-            .collect(),
-    )
+/// `sum k_i p_i` (same degree).
+fn lin<const N: usize>(terms: &[(f64, &Poly<N>)]) -> Poly<N> {
+    std::array::from_fn(|i| terms.iter().map(|(k, p)| k * p[i]).sum())
 }
 
-fn abs_coeffs(p: &Bernstein) -> Bernstein {
-    Bernstein::new(p.coeffs().iter().map(|c| c.abs()).collect())
+fn abs<const N: usize>(p: &Poly<N>) -> Poly<N> {
+    p.map(f64::abs)
 }
 
-/// The circle's pieces on the half circle starting at `theta0`, as quadratics in `s`
-/// multiplied by `D = 1 + w^2`: (D, x, y, z, x', y', z').
+fn max_abs<const N: usize>(p: &Poly<N>) -> f64 {
+    p.iter().fold(0.0, |m, c| m.max(c.abs()))
+}
+
+/// C(n, k) for n <= 8.
+const BINOM: [[f64; 9]; 9] = {
+    let mut t = [[0.0; 9]; 9];
+    let mut n = 0;
+    while n < 9 {
+        t[n][0] = 1.0;
+        let mut k = 1;
+        while k <= n {
+            t[n][k] = t[n - 1][k - 1] + t[n - 1][k];
+            k += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
+/// Bernstein product: degrees `M - 1` and `N - 1` into `R - 1 = M + N - 2`.
+fn mul<const M: usize, const N: usize, const R: usize>(a: &Poly<M>, b: &Poly<N>) -> Poly<R> {
+    debug_assert_eq!(R, M + N - 1);
+    let (m, n) = (M - 1, N - 1);
+    let mut out = [0.0; R];
+    for (i, ai) in a.iter().enumerate() {
+        let wa = BINOM[m][i] * ai;
+        for (j, bj) in b.iter().enumerate() {
+            out[i + j] += wa * BINOM[n][j] * bj;
+        }
+    }
+    for (k, o) in out.iter_mut().enumerate() {
+        *o /= BINOM[m + n][k];
+    }
+    out
+}
+
+/// The circle on the half circle starting at `theta0`, as quadratics in `s` multiplied by
+/// `D = 1 + w^2`.
 struct HalfCircle {
-    d: Bernstein,
-    x: Bernstein,
-    y: Bernstein,
-    z: Bernstein,
-    xp: Bernstein,
-    yp: Bernstein,
-    zp: Bernstein,
+    d: Poly<3>,
+    z: Poly<3>,
+    /// `q D^2` and `q' D^2` (degree 4), `z' D` (degree 2).
+    q: Poly<5>,
+    dq: Poly<5>,
+    zp: Poly<3>,
 }
 
 impl HalfCircle {
@@ -71,40 +106,36 @@ impl HalfCircle {
         let d = quadratic(|w| 1.0 + w * w);
         let coord = |o: f64, u: f64, v: f64| lin(&[(o, &d), (u, &cos_d), (v, &sin_d)]);
         let deriv = |u: f64, v: f64| lin(&[(-u, &sin_d), (v, &cos_d)]);
+        let (x, y) = (coord(c.o.x, c.u.x, c.v.x), coord(c.o.y, c.u.y, c.v.y));
+        let (xp, yp) = (deriv(c.u.x, c.v.x), deriv(c.u.y, c.v.y));
         Self {
-            x: coord(c.o.x, c.u.x, c.v.x),
-            y: coord(c.o.y, c.u.y, c.v.y),
+            q: lin(&[(1.0, &mul(&x, &x)), (1.0, &mul(&y, &y))]),
+            dq: lin(&[(2.0, &mul(&x, &xp)), (2.0, &mul(&y, &yp))]),
             z: coord(c.o.z, c.u.z, c.v.z),
-            xp: deriv(c.u.x, c.v.x),
-            yp: deriv(c.u.y, c.v.y),
             zp: deriv(c.u.z, c.v.z),
             d,
         }
     }
-
-    /// `q D^2` and `q' D^2`.
-    fn q_and_dq(&self) -> (Bernstein, Bernstein) {
-        let q = lin(&[
-            (1.0, &self.x.product(&self.x)),
-            (1.0, &self.y.product(&self.y)),
-        ]);
-        let dq = lin(&[
-            (2.0, &self.x.product(&self.xp)),
-            (2.0, &self.y.product(&self.yp)),
-        ]);
-        (q, dq)
-    }
 }
 
-/// Roots in `s` of `p` mapped to angles; `false` when `p` vanishes identically.
-fn push_roots(p: &Bernstein, noise: f64, theta0: f64, out: &mut Vec<f64>) -> bool {
-    match poly::solve(p, S_TOL, noise) {
-        RootSet::IdenticallyZero => false,
-        RootSet::Isolated(roots) => {
-            out.extend(roots.iter().map(|&s| theta0 + 2.0 * (2.0 * s - 1.0).atan()));
-            true
-        }
+/// Roots in `s` of `p` mapped to angles; `false` when `p` vanishes identically (every
+/// coefficient within `noise`).
+fn push_roots<const N: usize>(p: &Poly<N>, noise: f64, theta0: f64, out: &mut Vec<f64>) -> bool {
+    if p.iter().all(|c| c.abs() <= noise) {
+        return false;
     }
+    let mut scratch = [0.0; 64];
+    let mut cand = [(0.0, RootKind::Odd); 32];
+    debug_assert!(roots_scratch_len(N) <= 64 && roots_candidate_len(N) <= 32);
+    roots_into(
+        p,
+        S_TOL,
+        noise,
+        &mut scratch[..roots_scratch_len(N)],
+        &mut cand[..roots_candidate_len(N)],
+        &mut |s, _| out.push(theta0 + 2.0 * (2.0 * s - 1.0).atan()),
+    );
+    true
 }
 
 /// Appends the critical angles of `F_s` (both branches) along `c` for the meridian line
@@ -112,17 +143,16 @@ fn push_roots(p: &Bernstein, noise: f64, theta0: f64, out: &mut Vec<f64>) -> boo
 /// identically: `F` is constant along the circle.
 pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>) -> bool {
     let start = out.len();
+    let (nr2, nz2) = (n.x * n.x, n.y * n.y);
     for theta0 in [0.0, PI] {
         let h = HalfCircle::new(c, theta0);
-        let (q, dq) = h.q_and_dq();
-        let zp2 = h.zp.product(&h.zp);
-        let (nr2, nz2) = (n.x * n.x, n.y * n.y);
-        let p = lin(&[(nr2, &dq.product(&dq)), (-4.0 * nz2, &q.product(&zp2))]);
-        let mag = lin(&[
-            (nr2, &abs_coeffs(&dq).product(&abs_coeffs(&dq))),
-            (4.0 * nz2, &abs_coeffs(&q).product(&abs_coeffs(&zp2))),
-        ])
-        .max_abs_coeff();
+        let zp2: Poly<5> = mul(&h.zp, &h.zp);
+        let dq2: Poly<9> = mul(&h.dq, &h.dq);
+        let qzp2: Poly<9> = mul(&h.q, &zp2);
+        let p = lin(&[(nr2, &dq2), (-4.0 * nz2, &qzp2)]);
+        let mag_dq2: Poly<9> = mul(&abs(&h.dq), &abs(&h.dq));
+        let mag_qzp2: Poly<9> = mul(&abs(&h.q), &abs(&zp2));
+        let mag = max_abs(&lin(&[(nr2, &mag_dq2), (4.0 * nz2, &mag_qzp2)]));
         if !push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, out) {
             out.truncate(start);
             return false;
@@ -136,15 +166,16 @@ pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>)
 /// identically (the circle lies on the extended surface).
 pub fn line_field_levels(c: &ParamCircle, n: Vector2<f64>, level: f64, out: &mut Vec<f64>) -> bool {
     let start = out.len();
+    let nr2 = n.x * n.x;
     for theta0 in [0.0, PI] {
         let h = HalfCircle::new(c, theta0);
-        let (q, _) = h.q_and_dq();
-        // (c D - n_z z D)^2
+        // (c - n_z z)^2 D^2
         let r = lin(&[(level, &h.d), (-n.y, &h.z)]);
-        let nr2 = n.x * n.x;
-        let p = lin(&[(nr2, &q), (-1.0, &r.product(&r))]);
-        let ra = lin(&[(level.abs(), &h.d), (n.y.abs(), &abs_coeffs(&h.z))]);
-        let mag = lin(&[(nr2, &abs_coeffs(&q)), (1.0, &ra.product(&ra))]).max_abs_coeff();
+        let r2: Poly<5> = mul(&r, &r);
+        let p = lin(&[(nr2, &h.q), (-1.0, &r2)]);
+        let ra = lin(&[(level.abs(), &h.d), (n.y.abs(), &abs(&h.z))]);
+        let ra2: Poly<5> = mul(&ra, &ra);
+        let mag = max_abs(&lin(&[(nr2, &abs(&h.q)), (1.0, &ra2)]));
         if !push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, out) {
             out.truncate(start);
             return false;
