@@ -39,6 +39,7 @@ use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
 use super::sweep::{critical_angles, level_angles, level_crossings, ParamCircle, RadialField};
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
+use std::collections::HashMap;
 
 /// Relative tolerance for deciding that two axes are the same line (coaxial solids) or
 /// parallel; relative to the size of the configuration. Round-off in composing a pose is
@@ -116,6 +117,40 @@ pub fn patch_distance_with(
     pos_ab: &Isometry3<f64>,
     opts: PatchOptions,
 ) -> PatchDistance {
+    patch_distance_memo(a, b, pos_ab, opts, None)
+}
+
+/// Closest pair `(point on a parallel, point on a patch)`, in the patch's frame.
+type ClosestPair = (Point3<f64>, Point3<f64>);
+
+/// Results of the boundary cases (b) and (c) shared by the patch pairs of one query (one
+/// pose): a boundary parallel meets the same patch, and the same parallel of the other
+/// solid, in every leaf pair that contains both, and neighbouring pieces share their end
+/// parallels. A parallel is keyed by the bits of its `(rho, z)`, a patch by its index in
+/// its tree.
+#[derive(Debug, Default)]
+pub struct BoundaryMemo {
+    /// (parallel of B?, rho bits, z bits, index of the other patch) -> closest pair.
+    circle_patch: HashMap<(bool, u64, u64, u32), Option<ClosestPair>>,
+    /// (A's parallel bits, B's parallel bits) -> closest pair (A's frame).
+    circle_circle: HashMap<(u64, u64, u64, u64), Option<ClosestPair>>,
+}
+
+/// A memo with the indices of the two patches in their trees.
+pub struct MemoSlot<'m> {
+    pub memo: &'m mut BoundaryMemo,
+    pub index_a: u32,
+    pub index_b: u32,
+}
+
+/// [`patch_distance_with`] sharing boundary results through `memo` (same pose only).
+pub fn patch_distance_memo(
+    a: &Patch,
+    b: &Patch,
+    pos_ab: &Isometry3<f64>,
+    opts: PatchOptions,
+    mut memo: Option<MemoSlot<'_>>,
+) -> PatchDistance {
     if let Some(r) = coaxial(a, b, pos_ab) {
         return r;
     }
@@ -159,14 +194,54 @@ pub fn patch_distance_with(
         }
     }
     // (b) boundary parallels of B against A, and of A against B.
-    boundary_vs_patch(b, a, pos_ab, opts.kernel, &mut |q, p| best.consider(p, q));
-    boundary_vs_patch(a, b, &pos_ba, opts.kernel, &mut |p, q| {
-        best.consider(pos_ab * p, pos_ab * q);
-    });
+    let bits = |e: Point2<f64>| (e.x.to_bits(), e.y.to_bits());
+    for (of_b, e) in b
+        .boundary()
+        .map(|e| (true, e))
+        .into_iter()
+        .chain(a.boundary().map(|e| (false, e)))
+    {
+        let compute = || {
+            if of_b {
+                closest(|emit| boundary_vs_patch(e, a, pos_ab, opts.kernel, emit))
+            } else {
+                closest(|emit| boundary_vs_patch(e, b, &pos_ba, opts.kernel, emit))
+            }
+        };
+        let found = match memo.as_mut() {
+            Some(m) => {
+                let (rb, zb) = bits(e);
+                let other = if of_b { m.index_a } else { m.index_b };
+                *m.memo
+                    .circle_patch
+                    .entry((of_b, rb, zb, other))
+                    .or_insert_with(compute)
+            }
+            None => compute(),
+        };
+        match found {
+            Some((x, c)) if of_b => best.consider(c, x),
+            Some((x, c)) => best.consider(pos_ab * x, pos_ab * c),
+            None => {}
+        }
+    }
     // (c) parallel pairs.
     for ea in a.boundary() {
         for eb in b.boundary() {
-            parallel_pair(ea, eb, pos_ab, opts.kernel, &mut |p, q| best.consider(p, q));
+            let compute = || closest(|emit| parallel_pair(ea, eb, pos_ab, opts.kernel, emit));
+            let found = match memo.as_mut() {
+                Some(m) => {
+                    let ((r1, z1), (r2, z2)) = (bits(ea), bits(eb));
+                    *m.memo
+                        .circle_circle
+                        .entry((r1, z1, r2, z2))
+                        .or_insert_with(compute)
+                }
+                None => compute(),
+            };
+            if let Some((p, q)) = found {
+                best.consider(p, q);
+            }
         }
     }
     // (d) intersection loops inside both patches: sign changes of the other surface's
@@ -196,6 +271,18 @@ pub fn patch_distance_with(
         point_b: best.q,
         interior_pairs: pairs,
     }
+}
+
+/// The closest of the pairs a candidate generator emits.
+fn closest(gen: impl FnOnce(&mut dyn FnMut(Point3<f64>, Point3<f64>))) -> Option<ClosestPair> {
+    let mut best: Option<(f64, ClosestPair)> = None;
+    gen(&mut |x, c| {
+        let d = (x - c).norm();
+        if best.is_none_or(|(bd, _)| d < bd) {
+            best = Some((d, (x, c)));
+        }
+    });
+    best.map(|(_, pair)| pair)
 }
 
 /// Meridians always scanned for crossings (an intersection loop that winds around a
@@ -409,10 +496,10 @@ fn surface_normal(o: &Patch, f: &Point3<f64>) -> Vector3<f64> {
     e * n2.x + Vector3::z() * n2.y
 }
 
-/// Boundary parallels of `g` (frame G) against patch `o` (frame O); `pos_og` places G in
-/// O. Emits (point on g's parallel, point on o) in O's frame.
+/// The boundary parallel `e` (meridian coordinates of frame G) against patch `o` (frame O);
+/// `pos_og` places G in O. Emits (point on the parallel, point on o) in O's frame.
 fn boundary_vs_patch(
-    g: &Patch,
+    e: Point2<f64>,
     o: &Patch,
     pos_og: &Isometry3<f64>,
     kernel: Kernel,
@@ -420,7 +507,7 @@ fn boundary_vs_patch(
 ) {
     let mut thetas = Vec::with_capacity(48);
     let mut feet = Vec::with_capacity(8);
-    for e in g.boundary() {
+    {
         if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
             let x = pos_og * Point3::new(0.0, 0.0, e.y);
             let (_, c) = o.point_distance(&x);
@@ -430,7 +517,7 @@ fn boundary_vs_patch(
             for f in &feet {
                 emit(x, *f);
             }
-            continue;
+            return;
         }
         let circle = ParamCircle::parallel(e.x, e.y, pos_og);
         thetas.clear();

@@ -13,7 +13,7 @@
 use super::bounds::{node_pair_bound, BoundKind};
 use super::containment::point_in_solid;
 use super::patch::Patch;
-use super::patch_distance::patch_distance;
+use super::patch_distance::{patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions};
 use super::tree::Disk;
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
@@ -137,6 +137,7 @@ pub(crate) fn leaf_pair(
     pos_ab: &Isometry3<f64>,
     pos_ba: &Isometry3<f64>,
     prune_at: f64,
+    memo: &mut BoundaryMemo,
 ) -> LeafResult {
     let (la, lb) = (&ta.nodes[na as usize], &tb.nodes[nb as usize]);
     let mut r = LeafResult {
@@ -191,7 +192,12 @@ pub(crate) fn leaf_pair(
         let (pa, pb) = (&ta.patches[ia as usize], &tb.patches[ib as usize]);
         {
             r.patch_tests += 1;
-            let pd = patch_distance(pa, pb, pos_ab);
+            let slot = MemoSlot {
+                memo: &mut *memo,
+                index_a: ia,
+                index_b: ib,
+            };
+            let pd = patch_distance_memo(pa, pb, pos_ab, PatchOptions::default(), Some(slot));
             if pd.distance < r.d {
                 r.d = pd.distance;
                 r.pa = pd.point_a;
@@ -259,14 +265,17 @@ pub fn traverse(
     let tol = opts.tolerance.max(0.0);
     let mut heap = BinaryHeap::new();
     let mut pruned_min = f64::INFINITY;
-    let evaluate =
+    let mut memo = BoundaryMemo::default();
+    let mut evaluate =
         |a: u32, b: u32, key: f64, out: &mut SurfaceBounds, stats: &mut TraversalStats| {
             stats.leaf_tests += 1;
             let e = ta.nodes[a as usize].eps + tb.nodes[b as usize].eps;
             // A leaf pair whose patches are all at least `upper - tol + e` apart cannot
             // improve the answer: its bound is enough.
             let prune_at = out.upper - tol + e;
-            let r = leaf_pair(ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba, prune_at);
+            let r = leaf_pair(
+                ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba, prune_at, &mut memo,
+            );
             stats.patch_tests += r.patch_tests;
             if !r.exact {
                 return key.max(r.d - e);
