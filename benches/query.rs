@@ -134,7 +134,7 @@ fn patch_kernels(c: &mut Criterion) {
             .wrapping_add(1442695040888963407);
         (s >> 11) as f64 / (1u64 << 53) as f64
     };
-    let mut arc = |f: &mut dyn FnMut() -> f64| loop {
+    let arc = |f: &mut dyn FnMut() -> f64| loop {
         let a = ProfileArc::Arc {
             center: nalgebra::Point2::new(0.2 + f(), f() - 0.5),
             radius: 0.05 + 0.5 * f(),
