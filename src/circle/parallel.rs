@@ -84,8 +84,14 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
         n_closest = 1;
     } else {
         // Overlapping projections: two symmetric pairs at the projected intersections.
-        let x = (delta * delta + ra * ra - rb * rb) / (2.0 * delta);
-        let y = (ra * ra - x * x).max(0.0).sqrt();
+        // x = (delta^2 + ra^2 - rb^2) / (2 delta), y = sqrt(ra^2 - x^2), written without
+        // cancellation: with e = delta - ra, ra - x = (rb - e)(rb + e) / (2 delta). Near
+        // tangency (y -> 0) the direct form loses half the digits of y, which moves the
+        // witness points along the circles by ~sqrt(eps) and the distance with them.
+        let e = delta - ra;
+        let ra_minus_x = (rb - e) * (rb + e) / (2.0 * delta);
+        let x = ra - ra_minus_x;
+        let y = (ra_minus_x * (ra + x)).max(0.0).sqrt();
         for (k, sy) in [1.0, -1.0].into_iter().enumerate() {
             let (px, py) = (x * ex - sy * y * ey, x * ey + sy * y * ex);
             let phi = py.atan2(px);

@@ -406,6 +406,26 @@ pub struct Outcome {
     pub count_exact: Option<usize>,
     pub count_float: usize,
     pub companion_rel_err: Option<f64>,
+    /// The double-precision inputs the solver saw (for pinning failures as regression tests).
+    pub inputs: (Circle3, Circle3),
+}
+
+/// Rust source of a circle, exact to the last bit (`f64::from_bits`).
+fn circle_source(c: &Circle3) -> String {
+    let v = |x: [f64; 3]| {
+        format!(
+            "[{}]",
+            x.map(|e| format!("f64::from_bits({:#x})", e.to_bits()))
+                .join(", ")
+        )
+    };
+    format!(
+        "circle_u({}, {}, {}, f64::from_bits({:#x}))",
+        v(c.center.coords.into()),
+        v(c.normal.into_inner().into()),
+        v(c.u_axis.into_inner().into()),
+        c.radius.to_bits()
+    )
 }
 
 /// Runs one case.
@@ -473,6 +493,7 @@ pub fn run_case(case: &Case) -> Outcome {
         count_exact,
         count_float,
         companion_rel_err,
+        inputs: (af, bf),
     }
 }
 
@@ -536,6 +557,16 @@ impl Summary {
                     "{}: rel err {:.3e} (exact {:.17e}, float {:.17e})",
                     case.label, o.rel_err, o.exact, o.float
                 ));
+                if std::env::var_os("VERIFY_SOURCE").is_some() {
+                    eprintln!(
+                        "// {}: exact {:e}\n({}, {}, {:e}),",
+                        case.label,
+                        o.exact,
+                        circle_source(&o.inputs.0),
+                        circle_source(&o.inputs.1),
+                        o.exact
+                    );
+                }
             }
         }
         if self
@@ -551,6 +582,16 @@ impl Summary {
                 self.count_mismatch += 1;
                 if case.family == "random" {
                     self.count_mismatch_random += 1;
+                }
+                if std::env::var_os("VERIFY_COUNTS").is_some() {
+                    eprintln!(
+                        "// count {}: exact {ce}, float {}, distance {:e}\n({}, {}),",
+                        case.label,
+                        o.count_float,
+                        o.exact,
+                        circle_source(&o.inputs.0),
+                        circle_source(&o.inputs.1)
+                    );
                 }
                 if self.count_mismatch_example.is_none() {
                     self.count_mismatch_example = Some(format!(
