@@ -11,9 +11,12 @@
 //! * [`refine`]: witness refinement on the exact NURBS surfaces;
 //! * [`distance`]: the query itself, with frame coherence.
 
+pub mod binormal_kernel;
 pub mod bounds;
 pub mod containment;
 pub mod distance;
+pub mod gauss;
+pub mod line_field;
 pub mod patch;
 pub mod patch_distance;
 pub mod planar;

@@ -438,37 +438,34 @@ impl Patch {
         dir: &Vector3<f64>,
         out: &mut Vec<Point3<f64>>,
     ) {
-        let ProfileArc::Arc { center, radius, .. } = self.arc else {
+        let ProfileArc::Arc { center, .. } = self.arc else {
             return;
         };
-        // Radial direction of the meridian plane in which the core point has signed
-        // coordinate center.x.
         let h = Vector2::new(core_pt.x, core_pt.y);
         let hn = h.norm();
-        let e = if center.x.abs() > 1e-300 && hn > 0.0 {
-            let s = center.x.signum();
-            Vector3::new(s * h.x / hn, s * h.y / hn, 0.0)
-        } else {
-            // Major circle is a point (sphere centred on the axis): the meridian plane is
-            // the one containing the direction.
-            let dh = Vector2::new(dir.x, dir.y);
-            let dn = dh.norm();
-            if dn > 1e-300 {
-                Vector3::new(dh.x / dn, dh.y / dn, 0.0)
-            } else {
-                Vector3::x()
-            }
-        };
-        let dr = dir.dot(&e);
-        let dz = dir.z;
         for sgn in [1.0, -1.0] {
-            let phi = (sgn * dz).atan2(sgn * dr);
+            let d = dir * sgn;
+            // Radial direction of the meridian plane of the surface point: the one in which
+            // the core point has signed coordinate `center.x`, or (major circle a point:
+            // sphere centred on the axis) the one containing the direction itself.
+            let e = if center.x.abs() > 1e-300 && hn > 0.0 {
+                let s = center.x.signum();
+                Vector3::new(s * h.x / hn, s * h.y / hn, 0.0)
+            } else {
+                let dh = Vector2::new(d.x, d.y);
+                let dn = dh.norm();
+                if dn > 1e-300 {
+                    Vector3::new(dh.x / dn, dh.y / dn, 0.0)
+                } else {
+                    Vector3::x()
+                }
+            };
+            let phi = d.z.atan2(d.dot(&e));
             if let Some(s) = self.arc.arc_param(phi) {
                 let p = self.arc.point_at(s);
                 out.push(lift(p, &e));
             }
         }
-        let _ = radius;
     }
 
     /// Outward-from-core unit normal used by orientation tests: the planar unit vector from

@@ -33,10 +33,13 @@
 //! [`PatchDistance::interior_pairs`]: at the deepest point of such a loop the common normal
 //! has both points inside the other solid, which the caller (who knows the solids) tests.
 
+use super::binormal_kernel::{circle_torus_critical, interior_torus_torus, parallel_pair_closest};
+use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
-use super::sweep::{critical_angles, level_angles, ParamCircle, RadialField};
+use super::sweep::{critical_angles, level_angles, level_crossings, ParamCircle, RadialField};
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
+use std::collections::HashMap;
 
 /// Relative tolerance for deciding that two axes are the same line (coaxial solids) or
 /// parallel; relative to the size of the configuration. Round-off in composing a pose is
@@ -68,11 +71,37 @@ impl Best {
     }
 }
 
+/// How critical angles along circles are found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Kernel {
+    /// Binormals of circles from the degree-8 polynomial (paper 3.2, [`binormal_kernel`]),
+    /// with the sampled scan only where a continuum of binormals makes it ill-posed.
+    #[default]
+    Binormals,
+    /// The sampled scan of [`sweep`] everywhere (an independent second method for tests).
+    Sweep,
+}
+
 /// Options of the patch distance (for testing the Gauss-map restriction and the like).
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub struct PatchOptions {
     /// Skip the interior-interior candidates (tests only).
     pub skip_interior: bool,
+    /// Kernel for critical angles.
+    pub kernel: Kernel,
+    /// Narrow the major-circle angles of torus/torus common normals by the Gauss map
+    /// (paper 3.3); results agree with and without it.
+    pub gauss_restriction: bool,
+}
+
+impl Default for PatchOptions {
+    fn default() -> Self {
+        Self {
+            skip_interior: false,
+            kernel: Kernel::Binormals,
+            gauss_restriction: true,
+        }
+    }
 }
 
 /// Exact distance between patch `a` (frame A) and patch `b` placed by `pos_ab` (a point
@@ -88,6 +117,40 @@ pub fn patch_distance_with(
     pos_ab: &Isometry3<f64>,
     opts: PatchOptions,
 ) -> PatchDistance {
+    patch_distance_memo(a, b, pos_ab, opts, None)
+}
+
+/// Closest pair `(point on a parallel, point on a patch)`, in the patch's frame.
+type ClosestPair = (Point3<f64>, Point3<f64>);
+
+/// Results of the boundary cases (b) and (c) shared by the patch pairs of one query (one
+/// pose): a boundary parallel meets the same patch, and the same parallel of the other
+/// solid, in every leaf pair that contains both, and neighbouring pieces share their end
+/// parallels. A parallel is keyed by the bits of its `(rho, z)`, a patch by its index in
+/// its tree.
+#[derive(Debug, Default)]
+pub struct BoundaryMemo {
+    /// (parallel of B?, rho bits, z bits, index of the other patch) -> closest pair.
+    circle_patch: HashMap<(bool, u64, u64, u32), Option<ClosestPair>>,
+    /// (A's parallel bits, B's parallel bits) -> closest pair (A's frame).
+    circle_circle: HashMap<(u64, u64, u64, u64), Option<ClosestPair>>,
+}
+
+/// A memo with the indices of the two patches in their trees.
+pub struct MemoSlot<'m> {
+    pub memo: &'m mut BoundaryMemo,
+    pub index_a: u32,
+    pub index_b: u32,
+}
+
+/// [`patch_distance_with`] sharing boundary results through `memo` (same pose only).
+pub fn patch_distance_memo(
+    a: &Patch,
+    b: &Patch,
+    pos_ab: &Isometry3<f64>,
+    opts: PatchOptions,
+    mut memo: Option<MemoSlot<'_>>,
+) -> PatchDistance {
     if let Some(r) = coaxial(a, b, pos_ab) {
         return r;
     }
@@ -99,15 +162,26 @@ pub fn patch_distance_with(
     };
     let mut pairs = Vec::new();
     if !opts.skip_interior {
+        let via_binormals = opts.kernel == Kernel::Binormals
+            && matches!(
+                (a.arc, b.arc),
+                (ProfileArc::Arc { .. }, ProfileArc::Arc { .. })
+            )
+            && interior_torus_torus(a, b, pos_ab, opts.gauss_restriction, &mut |p, q| {
+                best.consider(p, q);
+                pairs.push((p, q));
+            })
+            .is_ok();
         match (a.arc, b.arc) {
+            _ if via_binormals => {}
             (ProfileArc::Arc { .. }, _) => {
-                interior_via_core(a, b, pos_ab, &mut |p, q| {
+                interior_via_core(a, b, pos_ab, opts.kernel, &mut |p, q| {
                     best.consider(p, q);
                     pairs.push((p, q));
                 });
             }
             (_, ProfileArc::Arc { .. }) => {
-                interior_via_core(b, a, &pos_ba, &mut |q, p| {
+                interior_via_core(b, a, &pos_ba, opts.kernel, &mut |q, p| {
                     let (p, q) = (pos_ab * p, pos_ab * q);
                     best.consider(p, q);
                     pairs.push((p, q));
@@ -120,14 +194,54 @@ pub fn patch_distance_with(
         }
     }
     // (b) boundary parallels of B against A, and of A against B.
-    boundary_vs_patch(b, a, pos_ab, &mut |q, p| best.consider(p, q));
-    boundary_vs_patch(a, b, &pos_ba, &mut |p, q| {
-        best.consider(pos_ab * p, pos_ab * q);
-    });
+    let bits = |e: Point2<f64>| (e.x.to_bits(), e.y.to_bits());
+    for (of_b, e) in b
+        .boundary()
+        .map(|e| (true, e))
+        .into_iter()
+        .chain(a.boundary().map(|e| (false, e)))
+    {
+        let compute = || {
+            if of_b {
+                closest(|emit| boundary_vs_patch(e, a, pos_ab, opts.kernel, emit))
+            } else {
+                closest(|emit| boundary_vs_patch(e, b, &pos_ba, opts.kernel, emit))
+            }
+        };
+        let found = match memo.as_mut() {
+            Some(m) => {
+                let (rb, zb) = bits(e);
+                let other = if of_b { m.index_a } else { m.index_b };
+                *m.memo
+                    .circle_patch
+                    .entry((of_b, rb, zb, other))
+                    .or_insert_with(compute)
+            }
+            None => compute(),
+        };
+        match found {
+            Some((x, c)) if of_b => best.consider(c, x),
+            Some((x, c)) => best.consider(pos_ab * x, pos_ab * c),
+            None => {}
+        }
+    }
     // (c) parallel pairs.
     for ea in a.boundary() {
         for eb in b.boundary() {
-            parallel_pair(ea, eb, pos_ab, &mut |p, q| best.consider(p, q));
+            let compute = || closest(|emit| parallel_pair(ea, eb, pos_ab, opts.kernel, emit));
+            let found = match memo.as_mut() {
+                Some(m) => {
+                    let ((r1, z1), (r2, z2)) = (bits(ea), bits(eb));
+                    *m.memo
+                        .circle_circle
+                        .entry((r1, z1, r2, z2))
+                        .or_insert_with(compute)
+                }
+                None => compute(),
+            };
+            if let Some((p, q)) = found {
+                best.consider(p, q);
+            }
         }
     }
     // (d) intersection loops inside both patches: sign changes of the other surface's
@@ -140,6 +254,11 @@ pub fn patch_distance_with(
             th_a.push(p.y.atan2(p.x));
             let qb = pos_ba * q;
             th_b.push(qb.y.atan2(qb.x));
+        }
+        // The four sign combinations of a common normal share its meridians.
+        for th in [&mut th_a, &mut th_b] {
+            th.sort_by(f64::total_cmp);
+            th.dedup_by(|x, y| (*x - *y).abs() <= MERIDIAN_DEDUP);
         }
         meridian_crossings(b, a, pos_ab, &th_b, &mut |q, p| best.consider(p, q));
         meridian_crossings(a, b, &pos_ba, &th_a, &mut |p, q| {
@@ -154,6 +273,18 @@ pub fn patch_distance_with(
     }
 }
 
+/// The closest of the pairs a candidate generator emits.
+fn closest(gen: impl FnOnce(&mut dyn FnMut(Point3<f64>, Point3<f64>))) -> Option<ClosestPair> {
+    let mut best: Option<(f64, ClosestPair)> = None;
+    gen(&mut |x, c| {
+        let d = (x - c).norm();
+        if best.is_none_or(|(bd, _)| d < bd) {
+            best = Some((d, (x, c)));
+        }
+    });
+    best.map(|(_, pair)| pair)
+}
+
 /// Meridians always scanned for crossings (an intersection loop that winds around a
 /// patch's axis meets every meridian of that patch).
 const FIXED_MERIDIANS: [f64; 4] = [
@@ -162,6 +293,10 @@ const FIXED_MERIDIANS: [f64; 4] = [
     std::f64::consts::PI,
     3.0 * std::f64::consts::FRAC_PI_2,
 ];
+
+/// Meridian angles closer than this (radians) are scanned once: the crossing scan's
+/// samples along a meridian do not resolve finer angular differences.
+const MERIDIAN_DEDUP: f64 = 1e-12;
 
 /// Samples along a meridian for the crossing scan.
 const MERIDIAN_SAMPLES: usize = 32;
@@ -280,6 +415,7 @@ fn interior_via_core(
     t: &Patch,
     o: &Patch,
     pos_to: &Isometry3<f64>,
+    kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
 ) {
     let Core::Circle { r_major, z, .. } = t.core() else {
@@ -292,8 +428,16 @@ fn interior_via_core(
     if r_major == 0.0 {
         thetas.push(0.0);
     } else {
-        for s in [1.0, -1.0] {
-            critical_angles(&major, &core_field(o, s), &mut thetas);
+        let exact = match (kernel, o.core()) {
+            (Kernel::Binormals, Core::Line { n, .. }) => {
+                line_field_critical(&major, n, &mut thetas)
+            }
+            _ => false,
+        };
+        if !exact {
+            for s in [1.0, -1.0] {
+                critical_angles(&major, &core_field(o, s), &mut thetas);
+            }
         }
     }
     let mut feet = Vec::with_capacity(8);
@@ -352,17 +496,18 @@ fn surface_normal(o: &Patch, f: &Point3<f64>) -> Vector3<f64> {
     e * n2.x + Vector3::z() * n2.y
 }
 
-/// Boundary parallels of `g` (frame G) against patch `o` (frame O); `pos_og` places G in
-/// O. Emits (point on g's parallel, point on o) in O's frame.
+/// The boundary parallel `e` (meridian coordinates of frame G) against patch `o` (frame O);
+/// `pos_og` places G in O. Emits (point on the parallel, point on o) in O's frame.
 fn boundary_vs_patch(
-    g: &Patch,
+    e: Point2<f64>,
     o: &Patch,
     pos_og: &Isometry3<f64>,
+    kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
 ) {
     let mut thetas = Vec::with_capacity(48);
     let mut feet = Vec::with_capacity(8);
-    for e in g.boundary() {
+    {
         if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
             let x = pos_og * Point3::new(0.0, 0.0, e.y);
             let (_, c) = o.point_distance(&x);
@@ -372,31 +517,45 @@ fn boundary_vs_patch(
             for f in &feet {
                 emit(x, *f);
             }
-            continue;
+            return;
         }
         let circle = ParamCircle::parallel(e.x, e.y, pos_og);
         thetas.clear();
-        for s in [1.0, -1.0] {
-            critical_angles(&circle, &core_field(o, s), &mut thetas);
-        }
-        // Crossings of the extended surface: F = level.
-        match o.core() {
-            Core::Circle {
-                r_major,
-                z,
-                r_minor,
-                ..
-            } => {
-                for s in [1.0, -1.0] {
+        let exact = match (kernel, o.core()) {
+            (
+                Kernel::Binormals,
+                Core::Circle {
+                    r_major,
+                    z,
+                    r_minor,
+                },
+            ) => {
+                circle_torus_critical(&circle, r_major, z, &mut thetas) && {
+                    // Crossings of the torus lie between consecutive critical angles.
                     let level = r_minor * r_minor - r_major * r_major - z * z;
-                    level_angles(&circle, &core_field(o, s), level, &mut thetas);
+                    let n_crit = thetas.len();
+                    let mut crossings = Vec::new();
+                    for s in [1.0, -1.0] {
+                        let f = core_field(o, s);
+                        level_crossings(&circle, &f, level, &thetas[..n_crit], &mut crossings);
+                    }
+                    thetas.extend(crossings);
+                    true
                 }
             }
-            Core::Line { c, .. } => {
-                for s in [1.0, -1.0] {
-                    level_angles(&circle, &core_field(o, s), c, &mut thetas);
+            (Kernel::Binormals, Core::Line { n, c }) => {
+                let start = thetas.len();
+                let ok = line_field_critical(&circle, n, &mut thetas)
+                    && line_field_levels(&circle, n, c, &mut thetas);
+                if !ok {
+                    thetas.truncate(start);
                 }
+                ok
             }
+            _ => false,
+        };
+        if !exact {
+            sampled_boundary_angles(&circle, o, &mut thetas);
         }
         for &th in &thetas {
             let x = circle.point(th);
@@ -411,11 +570,31 @@ fn boundary_vs_patch(
     }
 }
 
+/// Critical and crossing angles of the parallel `circle` against `o` by the sampled scan.
+fn sampled_boundary_angles(circle: &ParamCircle, o: &Patch, thetas: &mut Vec<f64>) {
+    for s in [1.0, -1.0] {
+        critical_angles(circle, &core_field(o, s), thetas);
+    }
+    // Crossings of the extended surface: F = level.
+    let level = match o.core() {
+        Core::Circle {
+            r_major,
+            z,
+            r_minor,
+        } => r_minor * r_minor - r_major * r_major - z * z,
+        Core::Line { c, .. } => c,
+    };
+    for s in [1.0, -1.0] {
+        level_angles(circle, &core_field(o, s), level, thetas);
+    }
+}
+
 /// Closest points between the parallel `ea` of A and the parallel `eb` of B.
 fn parallel_pair(
     ea: Point2<f64>,
     eb: Point2<f64>,
     pos_ab: &Isometry3<f64>,
+    kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
 ) {
     let closest_on_a = |x: &Point3<f64>| {
@@ -445,6 +624,11 @@ fn parallel_pair(
             Vector3::x()
         };
         emit(pa, pos_ab * lift(eb, &e));
+        return;
+    }
+    if kernel == Kernel::Binormals {
+        let (p, q) = parallel_pair_closest((ea.x, ea.y), (eb.x, eb.y), pos_ab);
+        emit(p, q);
         return;
     }
     let field = RadialField {
@@ -711,244 +895,4 @@ fn disk_vs_generators(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use nalgebra::{Translation3, UnitQuaternion};
-    use std::f64::consts::{PI, TAU};
-
-    pub(crate) struct Rng(u64);
-    impl Rng {
-        pub(crate) fn f(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
-    /// Random piece in the half-plane rho >= 0.
-    fn random_piece(rng: &mut Rng) -> ProfileArc {
-        loop {
-            let p = match (rng.f() * 5.0) as u32 {
-                0 => ProfileArc::Segment {
-                    start: Point2::new(rng.f(), rng.f() - 0.5),
-                    end: Point2::new(rng.f(), rng.f() - 0.5),
-                },
-                1 => {
-                    // flat annulus or disk
-                    let z = rng.f() - 0.5;
-                    let r0 = if rng.f() < 0.5 { 0.0 } else { rng.f() * 0.5 };
-                    ProfileArc::Segment {
-                        start: Point2::new(r0, z),
-                        end: Point2::new(r0 + 0.2 + rng.f() * 0.5, z),
-                    }
-                }
-                2 => {
-                    // sphere-like: centre on the axis
-                    let r = 0.2 + rng.f() * 0.5;
-                    let a = -PI / 2.0 + rng.f() * PI * 0.5;
-                    ProfileArc::Arc {
-                        center: Point2::new(0.0, rng.f() - 0.5),
-                        radius: r,
-                        phi_start: a,
-                        sweep: rng.f() * (PI / 2.0 - a),
-                    }
-                }
-                _ => ProfileArc::Arc {
-                    center: Point2::new(rng.f() * 1.2 - 0.2, rng.f() - 0.5),
-                    radius: 0.05 + rng.f() * 0.5,
-                    phi_start: rng.f() * TAU,
-                    sweep: (rng.f() - 0.5) * 3.0,
-                },
-            };
-            if p.length() > 1e-3 && (0..=50).all(|i| p.point_at(i as f64 / 50.0).x >= 0.0) {
-                return p;
-            }
-        }
-    }
-
-    fn random_pose(rng: &mut Rng, spread: f64) -> Isometry3<f64> {
-        let axis = Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
-        let rot = UnitQuaternion::from_scaled_axis(axis * 6.0);
-        let t = Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5) * spread;
-        Isometry3::from_parts(Translation3::from(t), rot)
-    }
-
-    fn surface_point(p: &Patch, s: f64, th: f64) -> Point3<f64> {
-        lift(p.arc.point_at(s.clamp(0.0, 1.0)), &e_rho(th))
-    }
-
-    /// Reference: grid over B (frame B) measured exactly against A, refined by pattern
-    /// search; and the same with roles swapped.
-    fn reference(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> f64 {
-        let one_side = |a: &Patch, b: &Patch, pos: &Isometry3<f64>| {
-            let pos_inv = pos.inverse();
-            let f = |s: f64, th: f64| {
-                let x = pos * surface_point(b, s, th);
-                a.point_distance(&x).0
-            };
-            let (ns, nt) = (24, 64);
-            let mut cand = Vec::new();
-            for i in 0..=ns {
-                for j in 0..nt {
-                    let (s, th) = (i as f64 / ns as f64, j as f64 * TAU / nt as f64);
-                    cand.push((f(s, th), s, th));
-                }
-            }
-            cand.sort_by(|x, y| x.0.partial_cmp(&y.0).unwrap());
-            let mut best = f64::INFINITY;
-            for &(mut v, mut s, mut th) in cand.iter().take(6) {
-                let (mut hs, mut ht) = (1.0 / ns as f64, TAU / nt as f64);
-                while hs > 1e-13 {
-                    let mut moved = false;
-                    for (ds, dt) in [(hs, 0.0), (-hs, 0.0), (0.0, ht), (0.0, -ht)] {
-                        let s2 = (s + ds).clamp(0.0, 1.0);
-                        let v2 = f(s2, th + dt);
-                        if v2 < v {
-                            (v, s, th) = (v2, s2, th + dt);
-                            moved = true;
-                        }
-                    }
-                    if !moved {
-                        hs *= 0.5;
-                        ht *= 0.5;
-                    }
-                }
-                best = best.min(v);
-            }
-            let _ = pos_inv;
-            best
-        };
-        one_side(a, b, pos_ab).min(one_side(b, a, &pos_ab.inverse()))
-    }
-
-    fn check(a: &Patch, b: &Patch, pos: &Isometry3<f64>, label: &str) {
-        if let Err(e) = try_check(a, b, pos, label) {
-            panic!("{e}");
-        }
-    }
-
-    fn try_check(a: &Patch, b: &Patch, pos: &Isometry3<f64>, label: &str) -> Result<(), String> {
-        let r = patch_distance(a, b, pos);
-        let reference = reference(a, b, pos);
-        let on_a = a.point_distance(&r.point_a).0;
-        let on_b = b.point_distance(&(pos.inverse() * r.point_b)).0;
-        if !(on_a < 1e-9 && on_b < 1e-9) {
-            return Err(format!("{label}: witnesses off surfaces {on_a} {on_b}"));
-        }
-        if ((r.point_a - r.point_b).norm() - r.distance).abs() > 1e-12 {
-            return Err(format!("{label}: witness distance"));
-        }
-        if (r.distance - reference).abs() > 1e-7 * (1.0 + reference) {
-            return Err(format!(
-                "{label}: patch {} vs reference {} (a {:?}, b {:?}, pose {:?})",
-                r.distance, reference, a, b, pos
-            ));
-        }
-        Ok(())
-    }
-
-    #[test]
-    fn random_patch_pairs_match_reference() {
-        let mut rng = Rng(7);
-        let mut fails = Vec::new();
-        for i in 0..150 {
-            let a = Patch::new(random_piece(&mut rng));
-            let b = Patch::new(random_piece(&mut rng));
-            let pos = random_pose(&mut rng, 3.0);
-            if let Err(e) = try_check(&a, &b, &pos, &format!("case {i}")) {
-                fails.push(e);
-            }
-        }
-        assert!(fails.is_empty(), "{} failures: {fails:#?}", fails.len());
-    }
-
-    /// Long sweep: `PATCH_STRESS=5000 cargo test --release -- --ignored patch_stress`.
-    #[test]
-    #[ignore]
-    fn patch_stress() {
-        let n: usize = std::env::var("PATCH_STRESS")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(1000);
-        let mut rng = Rng(12345);
-        let mut fails = Vec::new();
-        for i in 0..n {
-            let a = Patch::new(random_piece(&mut rng));
-            let b = Patch::new(random_piece(&mut rng));
-            let pos = random_pose(&mut rng, 2.0);
-            if let Err(e) = try_check(&a, &b, &pos, &format!("case {i}")) {
-                fails.push(e);
-            }
-        }
-        assert!(
-            fails.is_empty(),
-            "{} failures of {n}: {fails:#?}",
-            fails.len()
-        );
-    }
-
-    /// Arc centres a hair off the axis (round-off of a fitted sphere), snapped or not.
-    #[test]
-    fn near_axis_centres_match_reference() {
-        let mut rng = Rng(17);
-        let mut fails = Vec::new();
-        for i in 0..60 {
-            let off = [1e-16, -1e-13, 1e-9, -1e-7, 1e-5][i % 5];
-            let piece = |rng: &mut Rng| ProfileArc::Arc {
-                center: Point2::new(off, rng.f() - 0.5),
-                radius: 0.3 + 0.5 * rng.f(),
-                phi_start: -1.5,
-                sweep: 1.0 + 2.0 * rng.f(),
-            };
-            let a = Patch::new(piece(&mut rng));
-            let b = if i % 2 == 0 {
-                Patch::new(piece(&mut rng))
-            } else {
-                Patch::new(random_piece(&mut rng))
-            };
-            let pos = random_pose(&mut rng, 3.0);
-            if let Err(e) = try_check(&a, &b, &pos, &format!("case {i} off {off:e}")) {
-                fails.push(e);
-            }
-        }
-        assert!(fails.is_empty(), "{} failures: {fails:#?}", fails.len());
-    }
-
-    #[test]
-    fn degenerate_poses_match_reference() {
-        let mut rng = Rng(11);
-        for i in 0..40 {
-            let a = Patch::new(random_piece(&mut rng));
-            let b = Patch::new(random_piece(&mut rng));
-            let t = Vector3::new(0.0, 0.0, rng.f() * 2.0 - 1.0);
-            let poses = [
-                // coaxial, same and flipped orientation
-                Isometry3::from_parts(Translation3::from(t), UnitQuaternion::identity()),
-                Isometry3::from_parts(
-                    Translation3::from(t),
-                    UnitQuaternion::from_scaled_axis(Vector3::x() * PI),
-                ),
-                // parallel axes, offset
-                Isometry3::from_parts(
-                    Translation3::new(rng.f() * 2.0, 0.0, t.z),
-                    UnitQuaternion::identity(),
-                ),
-                // axes intersecting at a right angle
-                Isometry3::from_parts(
-                    Translation3::from(t),
-                    UnitQuaternion::from_scaled_axis(Vector3::x() * PI / 2.0),
-                ),
-                // B's origin on A's axis, oblique
-                Isometry3::from_parts(
-                    Translation3::from(t),
-                    UnitQuaternion::from_scaled_axis(Vector3::new(0.3, 0.7, 0.0)),
-                ),
-            ];
-            for (k, pos) in poses.iter().enumerate() {
-                check(&a, &b, pos, &format!("case {i} pose {k}"));
-            }
-        }
-    }
-}
+pub(crate) mod tests;

@@ -167,6 +167,38 @@ pub fn level_angles(c: &ParamCircle, f: &RadialField, level: f64, out: &mut Vec<
     }
 }
 
+/// Appends the angles where `F = level` along the circle, given every critical angle of
+/// `F` (`critical`, sorted in `[0, 2 pi)`): `F` is monotone between consecutive critical
+/// angles, so each gap holds at most one crossing, found by [`bisect`] when the ends differ
+/// in sign. Touching without crossing happens at a critical angle, which the caller
+/// already measures.
+pub fn level_crossings(
+    c: &ParamCircle,
+    f: &RadialField,
+    level: f64,
+    critical: &[f64],
+    out: &mut Vec<f64>,
+) {
+    let Some(&first) = critical.first() else {
+        return;
+    };
+    let g = |t: f64| h_and_f(c, f, t).1 - level;
+    let g_first = g(first);
+    let mut g0 = g_first;
+    for (i, &t0) in critical.iter().enumerate() {
+        let (t1, g1) = match critical.get(i + 1) {
+            Some(&t1) => (t1, g(t1)),
+            None => (first + TAU, g_first),
+        };
+        if g0 == 0.0 {
+            out.push(t0);
+        } else if g0.signum() != g1.signum() && g1 != 0.0 {
+            out.push(bisect(g, t0, t1, g0).rem_euclid(TAU));
+        }
+        g0 = g1;
+    }
+}
+
 /// Magnitude of the field's terms along the circle, for relative tests.
 fn field_scale(c: &ParamCircle, f: &RadialField) -> f64 {
     let ext = c.o.coords.norm() + c.u.norm();

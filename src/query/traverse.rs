@@ -13,7 +13,8 @@
 use super::bounds::{node_pair_bound, BoundKind};
 use super::containment::point_in_solid;
 use super::patch::Patch;
-use super::patch_distance::patch_distance;
+use super::patch_distance::{patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions};
+use super::tree::Disk;
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
 use std::cmp::Ordering;
@@ -97,9 +98,13 @@ impl Ord for Entry {
 }
 
 /// Exact distance between the approximating patches of two leaves, with interpenetration
-/// checks of the interior common normals (see [`super::patch_distance`]).
+/// checks of the interior common normals (see [`super::patch_distance`]); or, when every
+/// patch pair's solid-torus bound already reaches the caller's pruning level, only that
+/// lower bound (`exact == false`).
 pub(crate) struct LeafResult {
+    /// The patch distance (`exact`), else a lower bound of it.
     pub d: f64,
+    pub exact: bool,
     pub pa: Point3<f64>,
     pub pb: Point3<f64>,
     pub penetration: Option<(Point3<f64>, Point3<f64>, f64)>,
@@ -118,6 +123,9 @@ fn outward(tree: &QueryTree, patch: &Patch, orient: f64, x: &Point3<f64>) -> Vec
     e * n.x + Vector3::z() * n.y
 }
 
+/// Patch pairs of one leaf pair (biarcs: at most two pieces each) that get pre-bounds.
+const MAX_PATCH_PAIRS: usize = 16;
+
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn leaf_pair(
     ta: &QueryTree,
@@ -128,19 +136,68 @@ pub(crate) fn leaf_pair(
     nb: u32,
     pos_ab: &Isometry3<f64>,
     pos_ba: &Isometry3<f64>,
+    prune_at: f64,
+    memo: &mut BoundaryMemo,
 ) -> LeafResult {
     let (la, lb) = (&ta.nodes[na as usize], &tb.nodes[nb as usize]);
     let mut r = LeafResult {
         d: f64::INFINITY,
+        exact: true,
         pa: Point3::origin(),
         pb: Point3::origin(),
         penetration: None,
         patch_tests: 0,
     };
-    for pa in &ta.patches[la.patch_start as usize..la.patch_end as usize] {
-        for pb in &tb.patches[lb.patch_start as usize..lb.patch_end as usize] {
+    // Solid-torus lower bounds of the patch pairs (bounds.rs; disks around the pieces),
+    // cheapest first. A pair whose bound is positive and not below the best distance so
+    // far can neither lower the minimum nor interpenetrate, so it is skipped.
+    let mut order: crate::poly::FixedVec<(f64, u32, u32), MAX_PATCH_PAIRS> = Default::default();
+    for ia in la.patch_start..la.patch_end {
+        for ib in lb.patch_start..lb.patch_end {
+            let (pa, pb) = (&ta.patches[ia as usize], &tb.patches[ib as usize]);
+            let bound = node_pair_bound(
+                &Disk::around(&pa.arc),
+                &Disk::around(&pb.arc),
+                pos_ab,
+                BoundKind::Torus,
+                prune_at,
+            );
+            if !order.try_push((bound, ia, ib)) {
+                // More pieces than expected in a leaf: no pre-bounds.
+                order.clear();
+                break;
+            }
+        }
+    }
+    order.as_mut_slice().sort_by(|x, y| x.0.total_cmp(&y.0));
+    if order.first().is_some_and(|&(b, _, _)| b >= prune_at) {
+        r.d = order[0].0;
+        r.exact = false;
+        return r;
+    }
+    let all_pairs = || {
+        (la.patch_start..la.patch_end).flat_map(move |ia| {
+            (lb.patch_start..lb.patch_end).map(move |ib| (f64::NEG_INFINITY, ia, ib))
+        })
+    };
+    let pairs: Vec<(f64, u32, u32)> = if order.is_empty() {
+        all_pairs().collect()
+    } else {
+        order.to_vec()
+    };
+    for (bound, ia, ib) in pairs {
+        if bound > 0.0 && bound >= r.d {
+            continue;
+        }
+        let (pa, pb) = (&ta.patches[ia as usize], &tb.patches[ib as usize]);
+        {
             r.patch_tests += 1;
-            let pd = patch_distance(pa, pb, pos_ab);
+            let slot = MemoSlot {
+                memo: &mut *memo,
+                index_a: ia,
+                index_b: ib,
+            };
+            let pd = patch_distance_memo(pa, pb, pos_ab, PatchOptions::default(), Some(slot));
             if pd.distance < r.d {
                 r.d = pd.distance;
                 r.pa = pd.point_a;
@@ -208,12 +265,21 @@ pub fn traverse(
     let tol = opts.tolerance.max(0.0);
     let mut heap = BinaryHeap::new();
     let mut pruned_min = f64::INFINITY;
-    let evaluate =
+    let mut memo = BoundaryMemo::default();
+    let mut evaluate =
         |a: u32, b: u32, key: f64, out: &mut SurfaceBounds, stats: &mut TraversalStats| {
             stats.leaf_tests += 1;
-            let r = leaf_pair(ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba);
-            stats.patch_tests += r.patch_tests;
             let e = ta.nodes[a as usize].eps + tb.nodes[b as usize].eps;
+            // A leaf pair whose patches are all at least `upper - tol + e` apart cannot
+            // improve the answer: its bound is enough.
+            let prune_at = out.upper - tol + e;
+            let r = leaf_pair(
+                ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba, prune_at, &mut memo,
+            );
+            stats.patch_tests += r.patch_tests;
+            if !r.exact {
+                return key.max(r.d - e);
+            }
             if r.d + e < out.upper {
                 out.upper = r.d + e;
             }
