@@ -10,6 +10,7 @@
 //! identically the roles are swapped; if both vanish the distance is constant along the
 //! circles (Villarceau-type continuum). Everything runs on stack arrays.
 
+use super::descent::descend;
 use super::frame::LocalPair;
 use super::poly8::{half_poly, s_of, theta_of, N_COEFFS};
 use super::{
@@ -17,7 +18,8 @@ use super::{
     Multiplicity, PARALLEL_SIN_TOL, TIE_REL_TOL,
 };
 use crate::poly::solve::{
-    restrict_into, roots_candidate_len, roots_into, roots_scratch_len, RootKind,
+    restrict_into, root_clusters_into, roots_candidate_len, roots_scratch_len, RootCluster,
+    RootKind,
 };
 use crate::poly::FixedVec;
 use nalgebra::Vector3;
@@ -52,10 +54,25 @@ const DEDUP_ANGLE_TOL: f64 = 1e-7;
 /// (every point of A is then nearly equidistant and the near/far foot is ill-conditioned).
 const NEAR_AXIS: f64 = 1e-6;
 
+/// Two local minima of the distance along B closer than this (radians) are checked for
+/// being one flat basin reached from two starts (a degenerate minimum is only located to
+/// ~eps^(1/4) ~ 1e-4); distinct closest pairs that close exist only within the tie
+/// tolerance of a bifurcation.
+const BASIN_ANGLE: f64 = 1e-2;
+
 /// Samples of the distance function used to confirm a constant-distance continuum.
 const CONTINUUM_SAMPLES: usize = 16;
 
-type Thetas = FixedVec<f64, 40>;
+/// A root of B's binormal polynomial in theta, with the span of the cluster it stands for
+/// (see [`RootCluster`]; `lo == theta == hi` for a well-separated root).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct ThetaRoot {
+    pub theta: f64,
+    pub lo: f64,
+    pub hi: f64,
+}
+
+type Thetas = FixedVec<ThetaRoot, 40>;
 
 /// Roots in theta of B's binormal polynomial within `range`; `None` when the polynomial
 /// vanishes identically on a half circle that meets the range.
@@ -101,19 +118,28 @@ pub(crate) fn theta_roots(lp: &LocalPair, range: Option<&AngleInterval>) -> Opti
                 let th = theta_of(s1, flip);
                 let v = crate::poly::solve::eval(&hp.coeffs, s1);
                 if v.abs() <= crate::poly::solve::zero_tolerance(&hp.coeffs, s1, hp.noise) {
-                    out.try_push(th);
+                    out.try_push(ThetaRoot {
+                        theta: th,
+                        lo: th,
+                        hi: th,
+                    });
                 }
                 continue;
             }
             restrict_into(&hp.coeffs, s1, s2, &mut restricted);
-            roots_into(
+            let to_theta = |x: f64| theta_of(s1 + x * (s2 - s1), flip);
+            root_clusters_into(
                 &restricted,
                 S_TOL / (s2 - s1),
                 hp.noise,
                 &mut scratch,
                 &mut cand,
-                &mut |x, _| {
-                    out.try_push(theta_of(s1 + x * (s2 - s1), flip));
+                &mut |r: RootCluster| {
+                    out.try_push(ThetaRoot {
+                        theta: to_theta(r.root),
+                        lo: to_theta(r.lo),
+                        hi: to_theta(r.hi),
+                    });
                 },
             );
         }
@@ -181,37 +207,6 @@ fn polish(lp: &LocalPair, phi0: f64, theta0: f64) -> (f64, f64, f64) {
     best
 }
 
-/// Newton polishing of a closest-pair candidate, judged by the distance itself: at
-/// degenerate minima (tangent circles) the residual is at rounding level long before the
-/// distance is, while Newton keeps converging linearly. Stops after 3 steps without gain.
-fn polish_min(lp: &LocalPair, phi0: f64, theta0: f64) -> (f64, f64, f64) {
-    let (mut phi, mut theta) = (phi0, theta0);
-    let mut best = (phi, theta, (lp.pa(phi) - lp.pb(theta)).norm());
-    let mut stall = 0;
-    for _ in 0..NEWTON_STEPS {
-        let (dp, dt, _, _) = newton_step(lp, phi, theta);
-        if !(dp.abs() < 0.5 && dt.abs() < 0.5) {
-            break;
-        }
-        phi -= dp;
-        theta -= dt;
-        let d = (lp.pa(phi) - lp.pb(theta)).norm();
-        if d < best.2 {
-            best = (phi, theta, d);
-            stall = 0;
-        } else {
-            stall += 1;
-            if stall >= 3 {
-                break;
-            }
-        }
-        if dp.abs() <= 1e-16 && dt.abs() <= 1e-16 {
-            break;
-        }
-    }
-    best
-}
-
 fn same_angle(x: f64, y: f64) -> bool {
     let d = (x - y).rem_euclid(TAU);
     d.min(TAU - d) <= DEDUP_ANGLE_TOL
@@ -270,7 +265,7 @@ fn local_binormals(
     let thetas = theta_roots(lp, range_b)?;
     let mut list = LocalList::new();
     let mut continuum_on_a = false;
-    for &theta in thetas.iter() {
+    for &ThetaRoot { theta, .. } in thetas.iter() {
         let mut fs = FixedVec::<f64, 4>::new();
         continuum_on_a |= feet(lp, theta, &mut fs);
         for &phi in fs.iter() {
@@ -502,33 +497,40 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
             multiplicity: sol.multiplicity,
         };
     }
-    // Parametrise the smaller circle: its binormal polynomial stays well scaled for extreme
-    // radius ratios (the larger circle's terms dominate P otherwise).
-    let b_first = b.radius <= a.radius;
-    for attempt in 0..2 {
-        let param_b = b_first == (attempt == 0);
+    // Search with each circle parametrised in turn and keep the smaller distance. Either
+    // search alone can be ill-conditioned (the parametrised circle much smaller or much
+    // larger than the other, nearly touching circles); every candidate is a true distance
+    // between two points of the circles, so the smaller one is never worse.
+    let mut best: Option<(bool, LocalMin)> = None;
+    for param_b in [true, false] {
         let (x, y) = if param_b { (a, b) } else { (b, a) };
         let Some(lpx) = LocalPair::new(x, y) else {
             continue;
         };
-        if let Some(m) = local_min(&lpx) {
-            let (px, py) = (m.0, m.1);
-            let mut res = MinDistance {
-                distance: m.2 * lpx.scale,
-                angle_a: px,
-                angle_b: py,
-                point_a: x.point_at(px),
-                point_b: y.point_at(py),
-                closest_pairs: m.3,
-                multiplicity: m.4,
-            };
-            if !param_b {
-                std::mem::swap(&mut res.angle_a, &mut res.angle_b);
-                std::mem::swap(&mut res.point_a, &mut res.point_b);
-                res.multiplicity = swap_multiplicity(res.multiplicity);
+        if let Some(mut m) = local_min(&lpx) {
+            m.dist *= lpx.scale;
+            if best.as_ref().is_none_or(|(_, b)| m.dist < b.dist) {
+                best = Some((param_b, m));
             }
-            return res;
         }
+    }
+    if let Some((param_b, m)) = best {
+        let (x, y) = if param_b { (a, b) } else { (b, a) };
+        let mut res = MinDistance {
+            distance: m.dist,
+            angle_a: m.phi,
+            angle_b: m.theta,
+            point_a: x.point_at(m.phi),
+            point_b: y.point_at(m.theta),
+            closest_pairs: m.pairs,
+            multiplicity: m.multiplicity,
+        };
+        if !param_b {
+            std::mem::swap(&mut res.angle_a, &mut res.angle_b);
+            std::mem::swap(&mut res.point_a, &mut res.point_b);
+            res.multiplicity = swap_multiplicity(res.multiplicity);
+        }
+        return res;
     }
     // Both polynomials vanish identically: the distance from B(theta) to A is constant along
     // B, or piecewise so; minimise it by sampling and polishing.
@@ -544,53 +546,90 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
     }
 }
 
-/// (phi, theta, local distance, closest pair count, multiplicity) with B parametrised.
-fn local_min(lp: &LocalPair) -> Option<(f64, f64, f64, usize, Multiplicity)> {
+/// The minimum found with B parametrised (local units until scaled by the caller).
+#[derive(Debug, Clone, Copy)]
+struct LocalMin {
+    phi: f64,
+    theta: f64,
+    dist: f64,
+    /// Distinct closest pairs (local minima within [`TIE_REL_TOL`] of the minimum).
+    pairs: usize,
+    multiplicity: Multiplicity,
+}
+
+/// Local minima of the distance from B(theta) to A. Every critical point of that distance
+/// is a root of B's binormal polynomial, so the global minimum is among the descents
+/// started from the roots; a root that stands for a cluster (a stretch where the polynomial
+/// is within noise of zero) is also descended from both ends of the cluster, because the
+/// representative may be a maximum between two minima.
+fn local_min(lp: &LocalPair) -> Option<LocalMin> {
     let thetas = theta_roots(lp, None)?;
-    let mut best = (0.0, 0.0, f64::INFINITY);
-    for &theta in thetas.iter() {
-        let (d, phi) = lp.dist_b_to_a(theta);
-        if d < best.2 {
-            best = (phi, theta, d);
+    // (theta, phi, distance) of distinct local minima.
+    let mut minima = FixedVec::<(f64, f64, f64), 64>::new();
+    for r in thetas.iter() {
+        for (k, start) in [r.theta, r.lo, r.hi].into_iter().enumerate() {
+            if k > 0 && start == r.theta {
+                continue;
+            }
+            let (t, smp) = descend(lp, start);
+            let t = wrap(t);
+            if !same_basin(lp, &minima, t, smp.f) {
+                minima.try_push((t, smp.phi, smp.f));
+            }
         }
     }
-    if !best.2.is_finite() {
-        // No root at all cannot happen for a smooth function on a torus (it has a minimum);
-        // fall back to sampling rather than return garbage.
+    let Some(&(theta, phi, dist)) = minima.iter().min_by(|x, y| x.2.total_cmp(&y.2)) else {
+        // A smooth function on a circle has a minimum, so the polynomial has roots; fall
+        // back to sampling rather than return garbage.
         let m = sampled_min(lp);
-        return Some((m.0, m.1, m.2, 1, m.3));
-    }
-    let (p, t, d) = polish_min(lp, best.0, best.1);
-    if d < best.2 {
-        best = (p, t, d);
-    }
-    // Ties: other roots whose distance equals the minimum.
-    let mut pairs = 1;
-    let mut seen = FixedVec::<f64, 40>::new();
-    seen.try_push(best.1);
-    for &theta in thetas.iter() {
-        let (d, _) = lp.dist_b_to_a(theta);
-        if d <= best.2 + TIE_REL_TOL && !seen.iter().any(|&s| same_angle(s, theta)) {
-            seen.try_push(theta);
-            pairs += 1;
-        }
-    }
-    let mut mult = Multiplicity::Finite;
+        return Some(LocalMin {
+            phi: m.0,
+            theta: m.1,
+            dist: m.2,
+            pairs: 1,
+            multiplicity: m.3,
+        });
+    };
+    let pairs = minima.iter().filter(|m| m.2 <= dist + TIE_REL_TOL).count();
+    let mut multiplicity = Multiplicity::Finite;
     // The foot on B lies on A's axis: every point of A is equally close.
-    let qb = lp.pb(best.1);
+    let qb = lp.pb(theta);
     if qb.x.hypot(qb.y) <= TIE_REL_TOL {
-        mult = Multiplicity::ContinuumOnA;
+        multiplicity = Multiplicity::ContinuumOnA;
     }
     // The foot on A lies on B's axis: every point of B is equally close.
     let nb = lp.u.cross(&lp.v);
-    let rel = lp.pa(best.0) - lp.c;
+    let rel = lp.pa(phi) - lp.c;
     if rel.cross(&nb).norm() <= TIE_REL_TOL {
-        mult = Multiplicity::ContinuumOnB;
+        multiplicity = Multiplicity::ContinuumOnB;
     }
-    if pairs >= 2 && mult == Multiplicity::Finite && constant_along_b(lp, best.2) {
-        mult = Multiplicity::ContinuumOnBoth;
+    if pairs >= 2 && multiplicity == Multiplicity::Finite && constant_along_b(lp, dist) {
+        multiplicity = Multiplicity::ContinuumOnBoth;
     }
-    Some((best.0, best.1, best.2, pairs, mult))
+    Some(LocalMin {
+        phi,
+        theta,
+        dist,
+        pairs,
+        multiplicity,
+    })
+}
+
+/// True when the local minimum at `theta` (value `d`) is one already in `minima`: the same
+/// angle, or a neighbour with f at the midpoint no higher than both (within
+/// [`TIE_REL_TOL`]), i.e. the same flat basin reached from two starts.
+fn same_basin(lp: &LocalPair, minima: &[(f64, f64, f64)], theta: f64, d: f64) -> bool {
+    minima.iter().any(|&(t, _, dm)| {
+        if same_angle(t, theta) {
+            return true;
+        }
+        let gap = wrap(theta - t);
+        if gap.abs() > BASIN_ANGLE {
+            return false;
+        }
+        let (mid, _) = lp.dist_b_to_a(t + 0.5 * gap);
+        mid <= d.max(dm) + TIE_REL_TOL
+    })
 }
 
 /// True when every sampled point of B is at distance `d` from A (to [`TIE_REL_TOL`]).

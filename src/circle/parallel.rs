@@ -18,10 +18,11 @@ fn theta_of_dir(lp: &LocalPair, dx: f64, dy: f64) -> f64 {
     cv.atan2(cu)
 }
 
-/// The parallel-plane solution: binormals (the four pairs on the centre line; one
+/// The parallel-plane solution: binormals (the four pairs on the centre line, plus the two
+/// pairs over the crossings of the projected circles, joined along the common normal; one
 /// representative when coaxial) and the closest pairs.
 pub(crate) struct ParallelSolution {
-    pub binormals: [LocalPairAngles; 4],
+    pub binormals: [LocalPairAngles; 6],
     pub n_binormals: usize,
     pub closest: [LocalPairAngles; 2],
     pub n_closest: usize,
@@ -55,7 +56,7 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
         let mut closest = [rep, zero];
         closest[0].dist = h.hypot(ra - rb);
         return ParallelSolution {
-            binormals: [rep, rep_far, zero, zero],
+            binormals: [rep, rep_far, zero, zero, zero, zero],
             n_binormals: 2,
             closest,
             n_closest: 1,
@@ -65,18 +66,21 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
     let (ex, ey) = (lp.c.x / delta, lp.c.y / delta);
     let phi_e = ey.atan2(ex);
     let phi_o = phi_e + std::f64::consts::PI;
-    let binormals = [
+    let mut binormals = [
         mk(phi_e, ex, ey, 1.0),
         mk(phi_e, ex, ey, -1.0),
         mk(phi_o, ex, ey, 1.0),
         mk(phi_o, ex, ey, -1.0),
+        zero,
+        zero,
     ];
+    let mut n_binormals = 4;
     let mut closest = [zero; 2];
     let n_closest;
     if delta >= ra + rb || delta <= (ra - rb).abs() {
         // Separated or nested projections: the closest pair is on the centre line.
         let best =
-            binormals
+            binormals[..4]
                 .iter()
                 .copied()
                 .fold(binormals[0], |m, b| if b.dist < m.dist { b } else { m });
@@ -84,8 +88,14 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
         n_closest = 1;
     } else {
         // Overlapping projections: two symmetric pairs at the projected intersections.
-        let x = (delta * delta + ra * ra - rb * rb) / (2.0 * delta);
-        let y = (ra * ra - x * x).max(0.0).sqrt();
+        // x = (delta^2 + ra^2 - rb^2) / (2 delta), y = sqrt(ra^2 - x^2), written without
+        // cancellation: with e = delta - ra, ra - x = (rb - e)(rb + e) / (2 delta). Near
+        // tangency (y -> 0) the direct form loses half the digits of y, which moves the
+        // witness points along the circles by ~sqrt(eps) and the distance with them.
+        let e = delta - ra;
+        let ra_minus_x = (rb - e) * (rb + e) / (2.0 * delta);
+        let x = ra - ra_minus_x;
+        let y = (ra_minus_x * (ra + x)).max(0.0).sqrt();
         for (k, sy) in [1.0, -1.0].into_iter().enumerate() {
             let (px, py) = (x * ex - sy * y * ey, x * ey + sy * y * ex);
             let phi = py.atan2(px);
@@ -100,6 +110,14 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
             };
         }
         n_closest = if y <= TIE_REL_TOL { 1 } else { 2 };
+        // The segments joining the crossings of the projections run along the common
+        // normal, perpendicular to both circles: binormals too (distinct from the centre-line
+        // ones unless the projections touch).
+        if y > TIE_REL_TOL {
+            binormals[4] = closest[0];
+            binormals[5] = closest[1];
+            n_binormals = 6;
+        }
     }
     // Centres within the tie tolerance of a common axis: the distance above is exact for
     // the given data, but the closest pair is only determined up to that tolerance.
@@ -110,7 +128,7 @@ pub(crate) fn solve(lp: &LocalPair) -> ParallelSolution {
     };
     ParallelSolution {
         binormals,
-        n_binormals: 4,
+        n_binormals,
         closest,
         n_closest,
         multiplicity,

@@ -246,20 +246,35 @@ pub fn odd_roots_guarded(
             }
             continue;
         }
-        // Split near the middle; avoid splitting exactly on a root (the zero would then
-        // sit on a piece boundary and be invisible to both halves' sign counts).
-        let mut mid = 0.5 * (a + b);
-        if eval(c, mid) == 0.0 {
-            mid = a + 0.4375 * (b - a);
-            if eval(c, mid) == 0.0 {
-                mid = a + 0.5625 * (b - a);
-            }
-        }
+        let mid = split_point(c, a, b);
         // Push right first so the left half is processed first (roots come out sorted).
         stack[top] = (mid, b);
         stack[top + 1] = (a, mid);
         top += 2;
     }
+}
+
+/// Fractions of a piece tried as split points, nearest the middle first.
+const SPLIT_FRACTIONS: [f64; 5] = [0.5, 0.4375, 0.5625, 0.375, 0.625];
+
+/// A split point near the middle of [a, b] where the sign of `c` is certain: |c(mid)| above
+/// the evaluation rounding bound. A root within rounding of the split point would otherwise
+/// sit on the boundary of both halves, where each half's end coefficient may get either
+/// sign, and both sign-variation counts can miss it. When every candidate is within the
+/// bound (a flat stretch), the one with the largest |c| is used.
+fn split_point(c: &[f64], a: f64, b: f64) -> f64 {
+    let mut best = (0.5 * (a + b), -1.0);
+    for frac in SPLIT_FRACTIONS {
+        let mid = a + frac * (b - a);
+        let v = eval(c, mid).abs();
+        if v > zero_tolerance(c, mid, 0.0) {
+            return mid;
+        }
+        if v > best.1 {
+            best = (mid, v);
+        }
+    }
+    best.0
 }
 
 #[inline]
@@ -365,6 +380,38 @@ pub fn roots_into(
     cand: &mut [(f64, RootKind)],
     sink: &mut impl FnMut(f64, RootKind),
 ) {
+    root_clusters_into(
+        c,
+        t_tol,
+        coeff_noise,
+        scratch,
+        cand,
+        &mut |r: RootCluster| sink(r.root, r.kind),
+    );
+}
+
+/// One root reported by [`root_clusters_into`]: the representative `root` and the span
+/// `[lo, hi]` of the candidates merged into it (`lo == hi` for a well-separated root). Inside
+/// a span the polynomial is within its noise bound of zero, so its roots there (and the
+/// extrema between them) cannot be told apart; callers that minimise a function whose
+/// critical points these are should search the whole span.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RootCluster {
+    pub root: f64,
+    pub lo: f64,
+    pub hi: f64,
+    pub kind: RootKind,
+}
+
+/// [`roots_into`] reporting each merged cluster of candidates with its span.
+pub fn root_clusters_into(
+    c: &[f64],
+    t_tol: f64,
+    coeff_noise: f64,
+    scratch: &mut [f64],
+    cand: &mut [(f64, RootKind)],
+    sink: &mut impl FnMut(RootCluster),
+) {
     let m = c.len();
     if m < 2 {
         return;
@@ -425,7 +472,12 @@ pub fn roots_into(
             }
             j += 1;
         }
-        sink(best.0, best.1);
+        sink(RootCluster {
+            root: best.0,
+            lo: list[i].0,
+            hi: list[j - 1].0,
+            kind: best.1,
+        });
         i = j;
     }
 }

@@ -217,3 +217,19 @@ fn double_root_exactly_on_a_split_point() {
     let d = from_roots(&[0.5], 1.0).product(&Bernstein::from_power(&[1.0, 0.0, 1.0]));
     assert_roots(&odd_roots(&d, 1e-15), &[0.5], 1e-12);
 }
+
+#[test]
+fn root_within_rounding_of_a_split_point() {
+    // The middle root sits one ulp off the first split point 1/2: P(1/2) is a rounding-level
+    // value of either sign, so both halves' end coefficients can miss the sign change unless
+    // the split is moved to where the sign is certain.
+    for r in [
+        0.5 + f64::EPSILON / 2.0,
+        0.5 - f64::EPSILON / 4.0,
+        0.5 + 1e-15,
+    ] {
+        let p = from_roots(&[0.2, r, 0.9], 1.0);
+        assert_roots(&roots(&p, 1e-15), &[0.2, r, 0.9], 1e-14);
+        assert_roots(&odd_roots(&p, 1e-15), &[0.2, r, 0.9], 1e-14);
+    }
+}

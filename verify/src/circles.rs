@@ -16,6 +16,17 @@ pub const REL_TOL: f64 = 1e-12;
 /// (relative to the scale): at an intersection the binormal direction is undefined.
 const COUNT_MIN_GAP: f64 = 1e-6;
 
+/// Count mismatches are triaged by the smallest separation of the exact roots theta: below
+/// this (radians) two roots are not resolvable in double precision. Near a double root
+/// P ~ a (theta - theta0)^2 - a delta^2 / 4 for roots delta apart, and P carries absolute
+/// noise nu ~ 64 eps (poly8::COEFF_NOISE_FACTOR) of its terms (~1e-14 at unit scale), so the
+/// pair is visible only if a delta^2 / 4 > nu, i.e. delta > 2 sqrt(nu / a) ~ 2e-7 for a ~ 1;
+/// moreover the solver sees the f64 rounding of the moved rational data (relative
+/// perturbation ~1e-15), which alone moves a near-double root pair by ~sqrt(1e-15) ~ 3e-8
+/// and can create or destroy the pair. 1e-6 covers both with a factor 5 margin for
+/// curvature a < 1.
+pub const CLUSTER_GAP: f64 = 1e-6;
+
 /// A circle with exact rational data.
 #[derive(Debug, Clone)]
 pub struct RCircle {
@@ -405,7 +416,29 @@ pub struct Outcome {
     pub float: f64,
     pub count_exact: Option<usize>,
     pub count_float: usize,
+    /// Smallest separation of the exact roots theta (see [`CLUSTER_GAP`]).
+    pub min_root_gap: f64,
     pub companion_rel_err: Option<f64>,
+    /// The double-precision inputs the solver saw (for pinning failures as regression tests).
+    pub inputs: (Circle3, Circle3),
+}
+
+/// Rust source of a circle, exact to the last bit (`f64::from_bits`).
+fn circle_source(c: &Circle3) -> String {
+    let v = |x: [f64; 3]| {
+        format!(
+            "[{}]",
+            x.map(|e| format!("f64::from_bits({:#x})", e.to_bits()))
+                .join(", ")
+        )
+    };
+    format!(
+        "circle_u({}, {}, {}, f64::from_bits({:#x}))",
+        v(c.center.coords.into()),
+        v(c.normal.into_inner().into()),
+        v(c.u_axis.into_inner().into()),
+        c.radius.to_bits()
+    )
 }
 
 /// Runs one case.
@@ -432,9 +465,13 @@ pub fn run_case(case: &Case) -> Outcome {
         .sum::<f64>()
         .sqrt();
     let scale = case.ra.to_f64().max(case.b.r.to_f64()).max(cnorm);
+    let mut min_root_gap = f64::INFINITY;
     let (exact, count_exact) = match (case.analytic, pair.analyse()) {
         (Some(d), _) => (d, None),
-        (None, Some(res)) => (res.min_distance.to_f64(), Some(res.root_count)),
+        (None, Some(res)) => {
+            min_root_gap = res.min_root_gap;
+            (res.min_distance.to_f64(), Some(res.root_count))
+        }
         // B's polynomial vanishes identically: parametrise A instead (the count is then of
         // parameters on A, so it is not compared).
         (None, None) => match (pair.swapped().analyse(), pair.coaxial_distance()) {
@@ -472,7 +509,9 @@ pub fn run_case(case: &Case) -> Outcome {
         float: m.distance,
         count_exact,
         count_float,
+        min_root_gap,
         companion_rel_err,
+        inputs: (af, bf),
     }
 }
 
@@ -509,6 +548,10 @@ pub struct Summary {
     pub companion_over_tol: usize,
     pub failures: Vec<String>,
     pub count_mismatch_random: usize,
+    /// Mismatches whose exact roots include a pair closer than [`CLUSTER_GAP`].
+    pub count_mismatch_clustered: usize,
+    /// Mismatches in the random family among well-separated roots (genuine misses).
+    pub count_mismatch_random_resolvable: usize,
 }
 
 impl Summary {
@@ -536,6 +579,16 @@ impl Summary {
                     "{}: rel err {:.3e} (exact {:.17e}, float {:.17e})",
                     case.label, o.rel_err, o.exact, o.float
                 ));
+                if std::env::var_os("VERIFY_SOURCE").is_some() {
+                    eprintln!(
+                        "// {}: exact {:e}\n({}, {}, {:e}),",
+                        case.label,
+                        o.exact,
+                        circle_source(&o.inputs.0),
+                        circle_source(&o.inputs.1),
+                        o.exact
+                    );
+                }
             }
         }
         if self
@@ -549,8 +602,26 @@ impl Summary {
             self.count_checked += 1;
             if ce != o.count_float {
                 self.count_mismatch += 1;
+                let clustered = o.min_root_gap < CLUSTER_GAP;
+                if clustered {
+                    self.count_mismatch_clustered += 1;
+                }
                 if case.family == "random" {
                     self.count_mismatch_random += 1;
+                    if !clustered {
+                        self.count_mismatch_random_resolvable += 1;
+                    }
+                }
+                if std::env::var_os("VERIFY_COUNTS").is_some() {
+                    eprintln!(
+                        "// count {}: exact {ce}, float {}, distance {:e}, root gap {:e}\n({}, {}),",
+                        case.label,
+                        o.count_float,
+                        o.exact,
+                        o.min_root_gap,
+                        circle_source(&o.inputs.0),
+                        circle_source(&o.inputs.1)
+                    );
                 }
                 if self.count_mismatch_example.is_none() {
                     self.count_mismatch_example = Some(format!(
@@ -616,10 +687,12 @@ impl std::fmt::Display for Summary {
         }
         writeln!(
             f,
-            "binormal counts (distinct theta on B vs exact Sturm count): {} compared, {} mismatches ({} in the random family){}",
+            "binormal counts (distinct theta on B vs exact Sturm count): {} compared, {} mismatches ({} with exact roots closer than {CLUSTER_GAP:e} rad; {} in the random family, {} of them resolvable){}",
             self.count_checked,
             self.count_mismatch,
+            self.count_mismatch_clustered,
             self.count_mismatch_random,
+            self.count_mismatch_random_resolvable,
             self.count_mismatch_example
                 .as_ref()
                 .map(|e| format!(", first: {e}"))

@@ -346,6 +346,33 @@ impl ExactPair {
         p
     }
 
+    /// True when B(theta) lies on A's axis (P vanishes there whatever the tangents) and no
+    /// point of A satisfies the remaining binormal condition (A(phi) - B) . B' = 0, i.e.
+    /// |z B'_z| > ra |B'_xy|: such a root of P is no binormal. On the axis every point of A
+    /// is equidistant, so (A - B) . A' = 0 holds for all phi.
+    fn spurious_axis_root(&self, cos: &Float, sin: &Float) -> bool {
+        let comp = |k: usize| {
+            let mut x = Float::with_val(PREC, &self.c[k]);
+            x += Float::with_val(PREC, &Rational::from(&self.rb * &self.u[k])) * cos;
+            x += Float::with_val(PREC, &Rational::from(&self.rb * &self.v[k])) * sin;
+            x
+        };
+        let tangent = |k: usize| {
+            let mut x = Float::with_val(PREC, &Rational::from(&self.rb * &self.v[k])) * cos;
+            x -= Float::with_val(PREC, &Rational::from(&self.rb * &self.u[k])) * sin;
+            x
+        };
+        let rho = Float::with_val(PREC, comp(0).square() + comp(1).square()).sqrt();
+        // A root of P at 256 bits: rho is either ~2^-200 (a true zero, the root being
+        // refined to 2^-240) or of the order of the data.
+        if rho > Float::with_val(PREC, 1e-50) {
+            return false;
+        }
+        let lhs = Float::with_val(PREC, comp(2) * tangent(2)).abs();
+        let bxy = Float::with_val(PREC, tangent(0).square() + tangent(1).square()).sqrt();
+        lhs > Float::with_val(PREC, &self.ra) * bxy
+    }
+
     /// Distance from B(theta) to circle A at precision PREC, theta given by (cos, sin).
     fn dist_at(&self, cos: &Float, sin: &Float) -> Float {
         let comp = |k: usize| {
@@ -395,25 +422,35 @@ impl ExactPair {
         debug_assert_eq!(roots.len(), finite);
         let mut min = Float::with_val(PREC, f64::INFINITY);
         let one = Float::with_val(PREC, 1);
+        let mut thetas: Vec<f64> = roots.iter().map(|u| 2.0 * u.to_f64().atan()).collect();
+        if at_infinity {
+            thetas.push(std::f64::consts::PI);
+        }
+        let mut spurious = 0;
         for u in &roots {
             let u2 = Float::with_val(PREC, u * u);
             let den = Float::with_val(PREC, &one + &u2);
             let cos = Float::with_val(PREC, &one - &u2) / &den;
             let sin = Float::with_val(PREC, u * 2u32) / &den;
+            spurious += usize::from(self.spurious_axis_root(&cos, &sin));
             let d = self.dist_at(&cos, &sin);
             if d < min {
                 min = d;
             }
         }
         if at_infinity {
+            let (cos, sin) = (Float::with_val(PREC, -1), Float::with_val(PREC, 0));
+            spurious += usize::from(self.spurious_axis_root(&cos, &sin));
             let d = self.dist_at(&Float::with_val(PREC, -1), &Float::with_val(PREC, 0));
             if d < min {
                 min = d;
             }
         }
         Some(ExactResult {
-            root_count: finite + usize::from(at_infinity),
+            root_count: finite + usize::from(at_infinity) - spurious,
+            spurious_roots: spurious,
             min_distance: min,
+            min_root_gap: min_circular_gap(&mut thetas),
         })
     }
 }
@@ -421,10 +458,26 @@ impl ExactPair {
 /// Result of [`ExactPair::analyse`].
 #[derive(Debug, Clone)]
 pub struct ExactResult {
-    /// Distinct real roots theta in [0, 2 pi).
+    /// Distinct real roots theta in [0, 2 pi) that are binormal parameters (spurious roots
+    /// excluded).
     pub root_count: usize,
+    /// Roots of P where B(theta) is on A's axis without a binormal there.
+    pub spurious_roots: usize,
     /// Minimum distance (PREC bits).
     pub min_distance: Float,
+    /// Smallest angular separation of two distinct roots theta (radians, on the circle);
+    /// infinity with fewer than two roots.
+    pub min_root_gap: f64,
+}
+
+/// Smallest separation of the angles in `thetas` around the circle (sorts them).
+fn min_circular_gap(thetas: &mut [f64]) -> f64 {
+    if thetas.len() < 2 {
+        return f64::INFINITY;
+    }
+    thetas.sort_by(f64::total_cmp);
+    let wrap = thetas[0] + std::f64::consts::TAU - thetas[thetas.len() - 1];
+    thetas.windows(2).map(|w| w[1] - w[0]).fold(wrap, f64::min)
 }
 
 /// Roots of a square-free polynomial: Sturm isolation on rational intervals, then MPFR
