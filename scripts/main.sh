@@ -9,4 +9,5 @@ mkdir -p "$out"
 target/release/revdist figures --out "$out"          # model profiles and M_t frames
 target/release/convergence "$out"                    # biarc vs chord convergence (CSV + SVG)
 target/release/accuracy_time "$out"                  # tree sizes, certified query times (CSV + MD + SVG)
+target/release/patch_kernels "$out"                  # leaf kernels: time per patch pair, misses near contact
 echo "figures and tables written to $out/"

@@ -9,7 +9,8 @@
 //! Usage: `accuracy_time [OUT_DIR] [--poses N]` (default `figures`, 200 poses per pair).
 //! Timings are wall-clock medians on whatever machine runs it; the CSV records the setting.
 
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use experiments::SplitMix;
+use nalgebra::{Isometry3, Translation3, Vector3};
 use plotters::prelude::*;
 use revdist::biarc::BiarcTree;
 use revdist::models;
@@ -30,39 +31,6 @@ const MORPH_FRAMES: usize = 100;
 const BUILD_REPEATS: usize = 5;
 /// Fixed seed: the same poses on every run.
 const SEED: u64 = 0x5eed_2020;
-
-/// SplitMix64: a tiny deterministic generator, so runs are reproducible without a crate.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn unit_vector(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                2.0 * self.next_f64() - 1.0,
-                2.0 * self.next_f64() - 1.0,
-                2.0 * self.next_f64() - 1.0,
-            );
-            let n = v.norm();
-            if n > 1e-3 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-
-    fn rotation(&mut self) -> UnitQuaternion<f64> {
-        let axis = nalgebra::Unit::new_normalize(self.unit_vector());
-        UnitQuaternion::from_axis_angle(&axis, std::f64::consts::PI * (2.0 * self.next_f64() - 1.0))
-    }
-}
 
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
