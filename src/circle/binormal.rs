@@ -10,7 +10,8 @@
 //! identically the roles are swapped; if both vanish the distance is constant along the
 //! circles (Villarceau-type continuum). Everything runs on stack arrays.
 
-use super::descent::descend;
+use super::certified::certified_min;
+use super::descent::{descend, foot_angle};
 use super::frame::LocalPair;
 use super::poly8::{half_poly, s_of, theta_of, N_COEFFS};
 use super::{
@@ -497,6 +498,27 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
             multiplicity: sol.multiplicity,
         };
     }
+    // General position: a local minimum certified global by a quartic (fast path).
+    let (x, y, param_b) = if b.radius <= a.radius {
+        (a, b, true)
+    } else {
+        (b, a, false)
+    };
+    if let Some(m) = LocalPair::new(x, y).and_then(|lpx| {
+        certified_min(&lpx).map(|m| (m.phi, m.theta, m.dist * lpx.scale))
+    }) {
+        let (phi, theta, dist) = m;
+        let (angle_a, angle_b) = if param_b { (phi, theta) } else { (theta, phi) };
+        return MinDistance {
+            distance: dist,
+            angle_a,
+            angle_b,
+            point_a: a.point_at(angle_a),
+            point_b: b.point_at(angle_b),
+            closest_pairs: 1,
+            multiplicity: Multiplicity::Finite,
+        };
+    }
     // Search with each circle parametrised in turn and keep the smaller distance. Either
     // search alone can be ill-conditioned (the parametrised circle much smaller or much
     // larger than the other, nearly touching circles); every candidate is a true distance
@@ -574,7 +596,7 @@ fn local_min(lp: &LocalPair) -> Option<LocalMin> {
             let (t, smp) = descend(lp, start);
             let t = wrap(t);
             if !same_basin(lp, &minima, t, smp.f) {
-                minima.try_push((t, smp.phi, smp.f));
+                minima.try_push((t, foot_angle(lp, t), smp.f));
             }
         }
     }

@@ -264,10 +264,14 @@ const SPLIT_FRACTIONS: [f64; 5] = [0.5, 0.4375, 0.5625, 0.375, 0.625];
 /// bound (a flat stretch), the one with the largest |c| is used.
 fn split_point(c: &[f64], a: f64, b: f64) -> f64 {
     let mut best = (0.5 * (a + b), -1.0);
+    // zero_tolerance(c, t, 0) <= this bound (sum |b_i| B_i(t) <= max |b_i|): values above it
+    // are certain without the second evaluation.
+    let n = (c.len() - 1).max(1) as f64;
+    let cheap = EVAL_NOISE_PER_DEGREE * n * c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     for frac in SPLIT_FRACTIONS {
         let mid = a + frac * (b - a);
         let v = eval(c, mid).abs();
-        if v > zero_tolerance(c, mid, 0.0) {
+        if v > cheap || v > zero_tolerance(c, mid, 0.0) {
             return mid;
         }
         if v > best.1 {
