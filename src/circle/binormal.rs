@@ -504,9 +504,9 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
     } else {
         (b, a, false)
     };
-    if let Some(m) = LocalPair::new(x, y).and_then(|lpx| {
-        certified_min(&lpx).map(|m| (m.phi, m.theta, m.dist * lpx.scale))
-    }) {
+    if let Some(m) = LocalPair::new(x, y)
+        .and_then(|lpx| certified_min(&lpx).map(|m| (m.phi, m.theta, m.dist * lpx.scale)))
+    {
         let (phi, theta, dist) = m;
         let (angle_a, angle_b) = if param_b { (phi, theta) } else { (theta, phi) };
         return MinDistance {

@@ -199,7 +199,9 @@ pub(crate) fn certified_min(lp: &LocalPair) -> Option<Certified> {
     let (mut t, mut smp) = descend(lp, start);
     for _ in 0..MAX_BASINS {
         let m = smp.f;
-        if !(smp.ddh > 0.0) || !(lp.ra >= m * (1.0 + 1e-6) || far_points_beyond(lp, m)) {
+        let convex = smp.ddh > 0.0;
+        let far_beyond = lp.ra >= m * (1.0 + 1e-6) || far_points_beyond(lp, m);
+        if !convex || !far_beyond {
             return None;
         }
         match certify(lp, t, m) {
@@ -209,8 +211,7 @@ pub(crate) fn certified_min(lp: &LocalPair) -> Option<Certified> {
                 let nb = lp.u.cross(&lp.v);
                 let phi = foot_angle(lp, t);
                 let rel = lp.pa(phi) - lp.c;
-                if qb.x.hypot(qb.y) <= AXIS_CLEARANCE || rel.cross(&nb).norm() <= AXIS_CLEARANCE
-                {
+                if qb.x.hypot(qb.y) <= AXIS_CLEARANCE || rel.cross(&nb).norm() <= AXIS_CLEARANCE {
                     return None;
                 }
                 return Some(Certified {
@@ -221,7 +222,8 @@ pub(crate) fn certified_min(lp: &LocalPair) -> Option<Certified> {
             }
             Verdict::Deeper(th) => {
                 let (t2, s2) = descend(lp, th);
-                if !(s2.f < m) {
+                let deeper = s2.f < m;
+                if !deeper {
                     return None;
                 }
                 (t, smp) = (t2, s2);
