@@ -15,6 +15,8 @@
 //! and root cluster of the polynomial, with each circle parametrised in turn. Everything
 //! runs on stack arrays.
 
+use super::certified::certified_min;
+use super::descent::{descend, foot_angle};
 use super::frame::LocalPair;
 use super::poly8::{half_poly, s_of, theta_of, N_COEFFS};
 use super::{
