@@ -54,6 +54,10 @@ const Q_NOISE_FACTOR: f64 = 64.0 * f64::EPSILON;
 /// (local units, scale 1): closer, the minimum may belong to a continuum of closest pairs.
 const AXIS_CLEARANCE: f64 = 1e-6;
 
+/// Largest decrease of f (unit scale) still available by descending from the returned
+/// angle: 1e-14, a hundredth of the 1e-12 accuracy.
+const MIN_GAIN: f64 = 1e-14;
+
 /// A certified minimum in local units.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Certified {
@@ -199,7 +203,9 @@ pub(crate) fn certified_min(lp: &LocalPair) -> Option<Certified> {
     let (mut t, mut smp) = descend(lp, start);
     for _ in 0..MAX_BASINS {
         let m = smp.f;
-        let convex = smp.ddh > 0.0;
+        // A proper local minimum: convex, and the remaining Newton decrease of h = f^2 / 2,
+        // h'^2 / (2 h''), moves f by less than MIN_GAIN (unit scale).
+        let convex = smp.ddh > 0.0 && smp.dh * smp.dh <= 2.0 * smp.ddh * MIN_GAIN * m;
         let far_beyond = lp.ra >= m * (1.0 + 1e-6) || far_points_beyond(lp, m);
         if !convex || !far_beyond {
             return None;

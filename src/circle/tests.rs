@@ -509,7 +509,8 @@ fn circle_u(c: [f64; 3], n: [f64; 3], u: [f64; 3], r: f64) -> Circle3 {
 /// max(ra, rb, |Cb - Ca|).
 const REL_TOL: f64 = 1e-12;
 
-/// Failures of `verify circles --count 100000 --seed 3 --motions 20` before the fix, pinned
+/// The first 24 of the 28 failures of `verify circles --count 100000 --seed 3 --motions 20`
+/// before the fix (the run was cut off before the rest were printed), pinned
 /// bit-exactly: (A, B, distance of the exact rational configuration, from rug/MPFR). The
 /// inputs are the f64 roundings the solver saw (rounding moves the true distance by ~1e-15
 /// of the scale). Causes: a root on a subdivision split point (gap 1e-9), noise-level
