@@ -22,10 +22,10 @@ const MIN_WIDTH: f64 = 1e-15;
 
 /// Rows of the binomial table used by [`horner_bernstein`] (degrees below this avoid a
 /// division per term).
-const BINOM_ROWS: usize = 17;
+pub const BINOM_ROWS: usize = 17;
 
 /// `BINOM[n][k]` = C(n, k) (exact in f64 for n < 17).
-const BINOM: [[f64; BINOM_ROWS]; BINOM_ROWS] = {
+pub const BINOM: [[f64; BINOM_ROWS]; BINOM_ROWS] = {
     let mut t = [[0.0; BINOM_ROWS]; BINOM_ROWS];
     let mut n = 0;
     while n < BINOM_ROWS {
