@@ -121,5 +121,65 @@ fn bound_kinds(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bound_kinds, per_pair);
+/// Leaf-sized toroidal patch pairs (sweep <= 0.1 rad, as at eps 1e-4) slid to 1e-4 of
+/// contact: the exact patch distance with the sampled kernel, the binormal kernel, and the
+/// binormal kernel with the Gauss-map restriction (paper 3.3).
+fn patch_kernels(c: &mut Criterion) {
+    use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
+    use revdist::query::{Patch, ProfileArc};
+    let mut s = 0x2545f4914f6cdd1du64;
+    let mut f = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let arc = |f: &mut dyn FnMut() -> f64| loop {
+        let a = ProfileArc::Arc {
+            center: nalgebra::Point2::new(0.2 + f(), f() - 0.5),
+            radius: 0.05 + 0.5 * f(),
+            phi_start: f() * std::f64::consts::TAU,
+            sweep: (2.0 * f() - 1.0) * 0.1,
+        };
+        if a.start().x > 0.0 && a.end().x > 0.0 {
+            return Patch::new(a);
+        }
+    };
+    let opts = |kernel, gauss_restriction| PatchOptions {
+        kernel,
+        gauss_restriction,
+        ..PatchOptions::default()
+    };
+    let mut cases = Vec::new();
+    while cases.len() < 64 {
+        let (a, b) = (arc(&mut f), arc(&mut f));
+        let pose = Isometry3::from_parts(
+            Translation3::new(f() - 0.5, f() - 0.5, f() - 0.5),
+            UnitQuaternion::from_scaled_axis(Vector3::new(f() - 0.5, f() - 0.5, f() - 0.5) * 6.0),
+        );
+        let r = patch_distance_with(&a, &b, &pose, opts(Kernel::Binormals, true));
+        if r.distance > 1e-3 {
+            let shift = (r.point_a - r.point_b) * ((r.distance - 1e-4) / r.distance);
+            cases.push((a, b, Translation3::from(shift) * pose));
+        }
+    }
+    let mut group = c.benchmark_group("patch_distance_64_leaf_pairs");
+    group.sample_size(20);
+    for (name, o) in [
+        ("sampled_scan", opts(Kernel::Sweep, false)),
+        ("binormals", opts(Kernel::Binormals, false)),
+        ("binormals_gauss", opts(Kernel::Binormals, true)),
+    ] {
+        group.bench_function(name, |bench| {
+            bench.iter(|| {
+                for (a, b, pose) in &cases {
+                    black_box(patch_distance_with(a, b, pose, o));
+                }
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, patch_kernels, bound_kinds, per_pair);
 criterion_main!(benches);

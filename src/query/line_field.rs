@@ -90,6 +90,10 @@ fn mul<const M: usize, const N: usize, const R: usize>(a: &Poly<M>, b: &Poly<N>)
 /// `D = 1 + w^2`.
 struct HalfCircle {
     d: Poly<3>,
+    x: Poly<3>,
+    y: Poly<3>,
+    xp: Poly<3>,
+    yp: Poly<3>,
     z: Poly<3>,
     /// `q D^2` and `q' D^2` (degree 4), `z' D` (degree 2).
     q: Poly<5>,
@@ -114,8 +118,30 @@ impl HalfCircle {
             z: coord(c.o.z, c.u.z, c.v.z),
             zp: deriv(c.u.z, c.v.z),
             d,
+            x,
+            y,
+            xp,
+            yp,
         }
     }
+}
+
+/// Appends the solutions of `a cos theta + b sin theta = k`; `false` (nothing appended)
+/// when `a = b = 0`, i.e. the left side is constant. Near tangency (`|k|` within
+/// [`COEFF_NOISE_FACTOR`] of the amplitude) the double root is kept.
+fn harmonic_roots(a: f64, b: f64, k: f64, out: &mut Vec<f64>) -> bool {
+    let amp = a.hypot(b);
+    if amp == 0.0 {
+        return false;
+    }
+    let ratio = k / amp;
+    if ratio.abs() > 1.0 + COEFF_NOISE_FACTOR * (1.0 + k.abs() / amp) {
+        return true;
+    }
+    let (centre, half) = (b.atan2(a), ratio.clamp(-1.0, 1.0).acos());
+    out.push(centre + half);
+    out.push(centre - half);
+    true
 }
 
 /// Roots in `s` of `p` mapped to angles; `false` when `p` vanishes identically (every
@@ -142,9 +168,27 @@ fn push_roots<const N: usize>(p: &Poly<N>, noise: f64, theta0: f64, out: &mut Ve
 /// with unit normal `n`. Returns `false` (with `out` unchanged) when the polynomial vanishes
 /// identically: `F` is constant along the circle.
 pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>) -> bool {
+    if n.x == 0.0 {
+        // Flat annulus: F = n_z z, critical where z' = v_z cos - u_z sin = 0.
+        return harmonic_roots(c.v.z, -c.u.z, 0.0, out);
+    }
     let start = out.len();
     let (nr2, nz2) = (n.x * n.x, n.y * n.y);
     for theta0 in [0.0, PI] {
+        if n.y == 0.0 {
+            // Cylinder: F = s n_rho rho, critical where q' = 0 (P = n_rho^2 q'^2: only the
+            // square root of the double roots is needed).
+            let h = HalfCircle::new(c, theta0);
+            let mag = max_abs(&lin(&[
+                (2.0, &mul::<3, 3, 5>(&abs(&h.x), &abs(&h.xp))),
+                (2.0, &mul::<3, 3, 5>(&abs(&h.y), &abs(&h.yp))),
+            ]));
+            if !push_roots(&h.dq, COEFF_NOISE_FACTOR * mag, theta0, out) {
+                out.truncate(start);
+                return false;
+            }
+            continue;
+        }
         let h = HalfCircle::new(c, theta0);
         let zp2: Poly<5> = mul(&h.zp, &h.zp);
         let dq2: Poly<9> = mul(&h.dq, &h.dq);
@@ -165,6 +209,10 @@ pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>)
 /// with unit normal `n`. Returns `false` (with `out` unchanged) when the polynomial vanishes
 /// identically (the circle lies on the extended surface).
 pub fn line_field_levels(c: &ParamCircle, n: Vector2<f64>, level: f64, out: &mut Vec<f64>) -> bool {
+    if n.x == 0.0 {
+        // Flat annulus: z = o_z + u_z cos + v_z sin = level / n_z.
+        return harmonic_roots(c.u.z, c.v.z, level / n.y - c.o.z, out);
+    }
     let start = out.len();
     let nr2 = n.x * n.x;
     for theta0 in [0.0, PI] {
