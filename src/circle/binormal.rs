@@ -1,16 +1,22 @@
 //! All binormals and the minimum distance of two circles (paper section 3.2, Appendix A).
 //!
-//! Pipeline: express B in A's unit-size frame ([`super::frame`]); closed form for points and
-//! parallel planes ([`super::parallel`]); otherwise the degree-8 half-angle polynomial on the
-//! two half circles of B ([`super::poly8`]), restricted to the requested angle range, solved
-//! with [`crate::poly::solve::roots_into`] (keeps double roots: when A's centre is on B's axis
-//! every root is double); each root gives the near/far foot on A (or, when B(theta) is on
-//! A's axis, the feet solving the tangent condition); 2-D Newton on (A-B).A' = 0,
-//! (A-B).B' = 0 polishes the pair; duplicates are merged. If B's polynomial vanishes
-//! identically the roles are swapped; if both vanish the distance is constant along the
-//! circles (Villarceau-type continuum). Everything runs on stack arrays.
+//! Binormals: express B in A's unit-size frame ([`super::frame`]); closed form for points
+//! and parallel planes ([`super::parallel`]); otherwise the degree-8 half-angle polynomial on
+//! the two half circles of B ([`super::poly8`]), restricted to the requested angle range,
+//! solved with [`crate::poly::solve::root_clusters_into`] (keeps double roots: when A's
+//! centre is on B's axis every root is double); each root gives the near/far foot on A (or,
+//! when B(theta) is on A's axis, the feet solving the tangent condition); 2-D Newton on
+//! (A-B).A' = 0, (A-B).B' = 0 polishes the pair; duplicates are merged. If B's polynomial
+//! vanishes identically the roles are swapped; if both vanish the distance is constant along
+//! the circles (Villarceau-type continuum).
+//!
+//! Minimum distance: general pairs take the certified fast path of [`super::certified`];
+//! the rest descend the closed-form distance along B ([`super::descent`]) from every root
+//! and root cluster of the polynomial, with each circle parametrised in turn. Everything
+//! runs on stack arrays.
 
-use super::descent::descend;
+use super::certified::certified_min;
+use super::descent::{descend, foot_angle};
 use super::frame::LocalPair;
 use super::poly8::{half_poly, s_of, theta_of, N_COEFFS};
 use super::{
@@ -39,6 +45,9 @@ const S_TOL: f64 = 1e-15;
 /// order) Newton converges linearly with ratio 2/3, and a triple root is only known to
 /// ~eps^(1/3) ~ 5e-6; 64 steps shrink that by (2/3)^64 ~ 5e-12.
 const NEWTON_STEPS: usize = 64;
+
+/// Newton steps in a row without a smaller residual that end polishing (rounding level).
+const POLISH_STALL: usize = 2;
 
 /// A polished pair is accepted as a binormal when both residuals (A-B).A'/|A'| and
 /// (A-B).B'/|B'| are below this (local units, configuration scale 1). Roots of the squared
@@ -175,34 +184,40 @@ fn newton_step(lp: &LocalPair, phi: f64, theta: f64) -> (f64, f64, f64, f64) {
     )
 }
 
-/// Normalised residuals (A-B).A'/|A'|, (A-B).B'/|B'|.
+/// Normalised residuals (A-B).A'/|A'|, (A-B).B'/|B'| from the gradient (g1, g2).
 #[inline]
-fn residual(lp: &LocalPair, phi: f64, theta: f64) -> f64 {
-    let (_, _, g1, g2) = newton_step(lp, phi, theta);
+fn residual_of(lp: &LocalPair, g1: f64, g2: f64) -> f64 {
     let r1 = if lp.ra > 0.0 { g1.abs() / lp.ra } else { 0.0 };
     let r2 = if lp.rb > 0.0 { g2.abs() / lp.rb } else { 0.0 };
     r1.max(r2)
 }
 
-/// Newton polishing; returns the improved pair and its residual (keeps the start if Newton
-/// does not reduce the residual).
+/// Newton polishing; returns the best pair met and its residual (the start if Newton does
+/// not reduce the residual). Each step evaluates the gradient once, at the current pair; the
+/// loop ends after [`POLISH_STALL`] steps without a smaller residual (quadratic convergence
+/// reaches rounding in ~4 steps from a double-precision root; at degenerate critical points
+/// the residual keeps falling linearly and the loop runs on, up to [`NEWTON_STEPS`]).
 fn polish(lp: &LocalPair, phi0: f64, theta0: f64) -> (f64, f64, f64) {
     let (mut phi, mut theta) = (phi0, theta0);
-    let mut best = (phi, theta, residual(lp, phi, theta));
+    let mut best = (phi, theta, f64::INFINITY);
+    let mut stall = 0;
     for _ in 0..NEWTON_STEPS {
-        let (dp, dt, _, _) = newton_step(lp, phi, theta);
-        if !(dp.abs() < 0.5 && dt.abs() < 0.5) {
+        let (dp, dt, g1, g2) = newton_step(lp, phi, theta);
+        let r = residual_of(lp, g1, g2);
+        if r < best.2 {
+            best = (phi, theta, r);
+            stall = 0;
+        } else {
+            stall += 1;
+            if stall >= POLISH_STALL {
+                break;
+            }
+        }
+        if !(dp.abs() < 0.5 && dt.abs() < 0.5) || (dp.abs() <= 1e-16 && dt.abs() <= 1e-16) {
             break;
         }
         phi -= dp;
         theta -= dt;
-        let r = residual(lp, phi, theta);
-        if r < best.2 {
-            best = (phi, theta, r);
-        }
-        if dp.abs() <= 1e-16 && dt.abs() <= 1e-16 {
-            break;
-        }
     }
     best
 }
@@ -497,6 +512,27 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
             multiplicity: sol.multiplicity,
         };
     }
+    // General position: a local minimum certified global by a quartic (fast path).
+    let (x, y, param_b) = if b.radius <= a.radius {
+        (a, b, true)
+    } else {
+        (b, a, false)
+    };
+    if let Some(m) = LocalPair::new(x, y)
+        .and_then(|lpx| certified_min(&lpx).map(|m| (m.phi, m.theta, m.dist * lpx.scale)))
+    {
+        let (phi, theta, dist) = m;
+        let (angle_a, angle_b) = if param_b { (phi, theta) } else { (theta, phi) };
+        return MinDistance {
+            distance: dist,
+            angle_a,
+            angle_b,
+            point_a: a.point_at(angle_a),
+            point_b: b.point_at(angle_b),
+            closest_pairs: 1,
+            multiplicity: Multiplicity::Finite,
+        };
+    }
     // Search with each circle parametrised in turn and keep the smaller distance. Either
     // search alone can be ill-conditioned (the parametrised circle much smaller or much
     // larger than the other, nearly touching circles); every candidate is a true distance
@@ -574,7 +610,7 @@ fn local_min(lp: &LocalPair) -> Option<LocalMin> {
             let (t, smp) = descend(lp, start);
             let t = wrap(t);
             if !same_basin(lp, &minima, t, smp.f) {
-                minima.try_push((t, smp.phi, smp.f));
+                minima.try_push((t, foot_angle(lp, t), smp.f));
             }
         }
     }

@@ -18,6 +18,10 @@ const MAX_STEP: f64 = 0.25;
 /// Step halvings tried before a step is declared useless (2^-40 ~ 1e-12 of `MAX_STEP`).
 const MAX_HALVINGS: usize = 40;
 
+/// A full Newton step below this (radians) ends the descent: the next step would be
+/// ~1e-18 times the curvature ratio h'''/h''.
+const NEWTON_DONE: f64 = 1e-9;
+
 /// A step below this (radians) ends the descent: theta is then known to a few ulps.
 const MIN_STEP: f64 = 1e-15;
 
@@ -29,39 +33,51 @@ pub(crate) struct Sample {
     pub dh: f64,
     /// h''(theta); -infinity on A's axis (where f has a ridge).
     pub ddh: f64,
-    /// Angle on A of the nearest point K.
-    pub phi: f64,
 }
 
 /// Evaluates f and the derivatives of f^2 / 2 at `theta`.
 #[inline]
 pub(crate) fn sample(lp: &LocalPair, theta: f64) -> Sample {
     let (st, ct) = theta.sin_cos();
+    sample_sc(lp, st, ct)
+}
+
+/// [`sample`] from sin theta and cos theta. Plain square roots instead of `hypot`: the
+/// frame has unit scale, so squares neither overflow nor underflow for any distance above
+/// 1e-150 of the scale.
+#[inline]
+pub(crate) fn sample_sc(lp: &LocalPair, st: f64, ct: f64) -> Sample {
     let w = ct * lp.u + st * lp.v;
     let q = lp.c + lp.rb * w;
     let dq = lp.rb * (ct * lp.v - st * lp.u);
-    let rho = q.x.hypot(q.y);
-    let f = (rho - lp.ra).hypot(q.z);
+    let rho = (q.x * q.x + q.y * q.y).sqrt();
+    let dr = rho - lp.ra;
+    let f = (dr * dr + q.z * q.z).sqrt();
     if rho == 0.0 {
         return Sample {
             f,
             dh: 0.0,
             ddh: f64::NEG_INFINITY,
-            phi: 0.0,
         };
     }
-    let (ex, ey) = (q.x / rho, q.y / rho);
+    let inv = 1.0 / rho;
+    let (ex, ey) = (q.x * inv, q.y * inv);
     let radial = ex * dq.x + ey * dq.y;
     let tangential = ex * dq.y - ey * dq.x;
     // D = B - K = (rho - ra) e + z e_z; B'' = -rb w.
-    let dh = (rho - lp.ra) * radial + q.z * dq.z;
-    let d_dot_ddq = -lp.rb * ((rho - lp.ra) * (ex * w.x + ey * w.y) + q.z * w.z);
-    let ddh = dq.norm_squared() - lp.ra / rho * tangential * tangential + d_dot_ddq;
-    Sample {
-        f,
-        dh,
-        ddh,
-        phi: q.y.atan2(q.x),
+    let dh = dr * radial + q.z * dq.z;
+    let d_dot_ddq = -lp.rb * (dr * (ex * w.x + ey * w.y) + q.z * w.z);
+    let ddh = dq.norm_squared() - lp.ra * inv * tangential * tangential + d_dot_ddq;
+    Sample { f, dh, ddh }
+}
+
+/// Angle on A of the point nearest to B(theta) (0 when B(theta) is on A's axis).
+pub(crate) fn foot_angle(lp: &LocalPair, theta: f64) -> f64 {
+    let q = lp.pb(theta);
+    if q.x == 0.0 && q.y == 0.0 {
+        0.0
+    } else {
+        q.y.atan2(q.x)
     }
 }
 
@@ -109,7 +125,12 @@ pub(crate) fn descend(lp: &LocalPair, theta0: f64) -> (f64, Sample) {
             break;
         };
         theta += step;
-        let done = step.abs() <= MIN_STEP || next.f == cur.f && step.abs() <= 1e-9;
+        // A Newton step below NEWTON_DONE leaves an error ~ step^2 (quadratic convergence):
+        // far below rounding, also for h = f^2 / 2 when f itself is tiny.
+        let newton = cur.ddh > 0.0;
+        let done = step.abs() <= MIN_STEP
+            || (newton && step.abs() <= NEWTON_DONE)
+            || next.f == cur.f && step.abs() <= 1e-9;
         cur = next;
         if done {
             break;

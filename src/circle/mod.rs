@@ -10,6 +10,7 @@
 //! meridian, point on axis, Villarceau) are reported explicitly, never as garbage.
 
 pub mod binormal;
+mod certified;
 mod descent;
 mod frame;
 pub mod parallel;

@@ -12,6 +12,7 @@
 //! squared form keeps the far branch too, so all binormals are roots.
 
 use super::frame::LocalPair;
+use crate::poly::solve::BINOM;
 
 /// Bernstein coefficient count of the binormal polynomial.
 pub const N_COEFFS: usize = 9;
@@ -20,22 +21,6 @@ pub const N_COEFFS: usize = 9;
 /// frame is scaled to unit size); each carries a few ulps of the largest term, and the final
 /// subtraction cancels. 64 eps of the largest term bounds the accumulated rounding with margin.
 pub const COEFF_NOISE_FACTOR: f64 = 64.0 * f64::EPSILON;
-
-/// C(n, k) for n <= 8.
-const BINOM: [[f64; 9]; 9] = {
-    let mut t = [[0.0; 9]; 9];
-    let mut n = 0;
-    while n < 9 {
-        t[n][0] = 1.0;
-        let mut k = 1;
-        while k <= n {
-            t[n][k] = t[n - 1][k - 1] + if k < n { t[n - 1][k] } else { 0.0 };
-            k += 1;
-        }
-        n += 1;
-    }
-    t
-};
 
 /// Bernstein product of degrees M-1 and N-1 into degree M+N-2.
 #[inline]

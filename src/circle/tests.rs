@@ -509,7 +509,8 @@ fn circle_u(c: [f64; 3], n: [f64; 3], u: [f64; 3], r: f64) -> Circle3 {
 /// max(ra, rb, |Cb - Ca|).
 const REL_TOL: f64 = 1e-12;
 
-/// Failures of `verify circles --count 100000 --seed 3 --motions 20` before the fix, pinned
+/// The first 24 of the 28 failures of `verify circles --count 100000 --seed 3 --motions 20`
+/// before the fix (the run was cut off before the rest were printed), pinned
 /// bit-exactly: (A, B, distance of the exact rational configuration, from rug/MPFR). The
 /// inputs are the f64 roundings the solver saw (rounding moves the true distance by ~1e-15
 /// of the scale). Causes: a root on a subdivision split point (gap 1e-9), noise-level
@@ -1498,279 +1499,119 @@ fn verify_failures_are_fixed() {
     }
 }
 
+/// Pinned configurations with exactly 8 binormals (Neff's bound), found by
+/// `verify eight --count 400 --seed 11 --min-gap 0.1`: the exact Sturm count of the degree-8
+/// polynomial over the rationals is 8, and the angles on B and lengths come from its roots
+/// refined in 256-bit MPFR. Data: (ra, B centre, B u-axis, B v-axis, rb, [(theta, length)]).
+type EightCase = (f64, [f64; 3], [f64; 3], [f64; 3], f64, [(f64, f64); 8]);
+
+fn eight_binormal_cases() -> [EightCase; 2] {
+    [
+        // 91/64; (37/64, -37/64, -19/32); (6, -7, 42)/43; (-7, -42, -6)/43; 85/64.
+        (
+            1.421875,
+            [0.578125, -0.578125, -0.59375],
+            [6.0 / 43.0, -7.0 / 43.0, 42.0 / 43.0],
+            [-7.0 / 43.0, -42.0 / 43.0, -6.0 / 43.0],
+            1.328125,
+            [
+                (-3.0784214626471953, 2.0934961639099985),
+                (-2.684292283813148, 2.5811573465436757),
+                (-2.211369342415087, 2.598142280269636),
+                (-1.3040142069614793, 0.3905583523051815),
+                (-0.6914256521088108, 2.3438351216851747),
+                (-0.3521770665607225, 0.8685861001231913),
+                (0.7858672266806093, 0.37151538368900033),
+                (1.6458502515667874, 3.423757944911822),
+            ],
+        ),
+        // 87/64; (-17/32, -17/64, 7/64); (17, 0, -144)/145; (-144, 0, -17)/145; 7/4.
+        (
+            1.359375,
+            [-0.53125, -0.265625, 0.109375],
+            [17.0 / 145.0, 0.0, -144.0 / 145.0],
+            [-144.0 / 145.0, 0.0, -17.0 / 145.0],
+            1.75,
+            [
+                (-2.786569899024375, 2.101866666820266),
+                (-2.6402348866899414, 2.3939277598503246),
+                (-1.5898142316748676, 2.614037616435917),
+                (-1.394526350990929, 0.11515487126384753),
+                (-0.25296285613572184, 2.2403189450369623),
+                (-0.12794338017936507, 1.9168812269986966),
+                (1.5555271692725143, 0.9300645098001759),
+                (1.7463750752703613, 3.659192514709866),
+            ],
+        ),
+    ]
+}
+
+/// Pinned binormal lengths: the distance accuracy (the f64 rounding of the rational
+/// axes moves them by ~1e-16).
+const PIN_LENGTH_TOL: f64 = 1e-12;
+/// Pinned angles: simple roots at least 0.1 apart are located to ~1e-15 rad; 1e-10 leaves
+/// margin for the rounding of the data.
+const PIN_ANGLE_TOL: f64 = 1e-10;
+
 #[test]
-fn zz_counts() {
-    let cases = [
-        // count random: exact 6, float 4, distance 4.7639099691486964e-1, root gap 1.3272124976813604e-1
-        (
-            circle_u(
-                [
-                    f64::from_bits(0xc020000000000000),
-                    f64::from_bits(0x4023800000000000),
-                    f64::from_bits(0xc000000000000000),
-                ],
-                [
-                    f64::from_bits(0x3fe778e85bdce040),
-                    f64::from_bits(0x3fd3402b3ac3e247),
-                    f64::from_bits(0x3fe3810360974dad),
-                ],
-                [
-                    f64::from_bits(0xbfe50614438bd212),
-                    f64::from_bits(0x3fe164a4d00aceb1),
-                    f64::from_bits(0x3fe0b7b9c081b04c),
-                ],
-                f64::from_bits(0x3fd1000000000000),
-            ),
-            circle_u(
-                [
-                    f64::from_bits(0xc01d6fea629e0edc),
-                    f64::from_bits(0x40253830a21c5e90),
-                    f64::from_bits(0xbfe5db866ab91396),
-                ],
-                [
-                    f64::from_bits(0x3fc64a4d00aceb10),
-                    f64::from_bits(0x3fe91396a0c28872),
-                    f64::from_bits(0xbfe314f076e19aae),
-                ],
-                [
-                    f64::from_bits(0xbfef460dbff39069),
-                    f64::from_bits(0x3fcb1a0c02a0b910),
-                    f64::from_bits(0xbf7d502d2776afee),
-                ],
-                f64::from_bits(0x3ff2000000000000),
-            ),
-        ),
-        // count random: exact 4, float 2, distance 1.46875e0, root gap 9.073041291876965e-1
-        (
-            circle_u(
-                [
-                    f64::from_bits(0x4020000000000000),
-                    f64::from_bits(0x3ff4000000000000),
-                    f64::from_bits(0xc022c00000000000),
-                ],
-                [
-                    f64::from_bits(0xbfb1abf810d48abb),
-                    f64::from_bits(0x3fefdd60b6ba747e),
-                    f64::from_bits(0x3faf0406f8f7a51d),
-                ],
-                [
-                    f64::from_bits(0x3fc051bf341d179f),
-                    f64::from_bits(0x3fb1abf810d48aba),
-                    f64::from_bits(0xbfefa971c8d22339),
-                ],
-                f64::from_bits(0x3ff6400000000000),
-            ),
-            circle_u(
-                [
-                    f64::from_bits(0x40227edc98aca154),
-                    f64::from_bits(0x4005e6e7a8007b19),
-                    f64::from_bits(0xc0205368c4ac63c7),
-                ],
-                [
-                    f64::from_bits(0xbfb1abf810d48abb),
-                    f64::from_bits(0x3fefdd60b6ba747e),
-                    f64::from_bits(0x3faf0406f8f7a51d),
-                ],
-                [
-                    f64::from_bits(0xbfefa971c8d22339),
-                    f64::from_bits(0xbfaf0406f8f7a51d),
-                    f64::from_bits(0xbfc0dc3c593345aa),
-                ],
-                f64::from_bits(0x3fee000000000000),
-            ),
-        ),
-        // count random: exact 4, float 2, distance 8.28125e-1, root gap 1.4140159909826449e0
-        (
-            circle_u(
-                [
-                    f64::from_bits(0xc014000000000000),
-                    f64::from_bits(0x4006000000000000),
-                    f64::from_bits(0x401f800000000000),
-                ],
-                [
-                    f64::from_bits(0x3fd89ce1b7b217bf),
-                    f64::from_bits(0x3fda504ef976985a),
-                    f64::from_bits(0x3fea7275a949c592),
-                ],
-                [
-                    f64::from_bits(0xbfc3f197add2e8ec),
-                    f64::from_bits(0xbfeb507120266b86),
-                    f64::from_bits(0x3fdfd10ace3da1d2),
-                ],
-                f64::from_bits(0x4000000000000000),
-            ),
-            circle_u(
-                [
-                    f64::from_bits(0xc0102b239e596140),
-                    f64::from_bits(0x3ff4786dec85efb9),
-                    f64::from_bits(0x401ca2af4a9279ee),
-                ],
-                [
-                    f64::from_bits(0xbfd89ce1b7b217bf),
-                    f64::from_bits(0xbfda504ef9769858),
-                    f64::from_bits(0xbfea7275a949c592),
-                ],
-                [
-                    f64::from_bits(0x3feccb0f425cde6f),
-                    f64::from_bits(0x3fa0decda002f494),
-                    f64::from_bits(0xbfdbd863be87ae51),
-                ],
-                f64::from_bits(0x3fea000000000000),
-            ),
-        ),
-        // count random: exact 4, float 2, distance 2.65625e-1, root gap 6.750765234437788e-1
-        (
-            circle_u(
-                [
-                    f64::from_bits(0x4019000000000000),
-                    f64::from_bits(0xc009000000000000),
-                    f64::from_bits(0x3fe4000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfea4c5c5a8d3bce),
-                    f64::from_bits(0x3fdf6c3bead38336),
-                    f64::from_bits(0x3fd27fb7eb46d792),
-                ],
-                [
-                    f64::from_bits(0xbfb037dcdc4c22b3),
-                    f64::from_bits(0x3fdb3a3a572c4320),
-                    f64::from_bits(0xbfece38168679dca),
-                ],
-                f64::from_bits(0x3ff1000000000000),
-            ),
-            circle_u(
-                [
-                    f64::from_bits(0x4018bd32cb67474a),
-                    f64::from_bits(0xc00cc1edc127882a),
-                    f64::from_bits(0x40014027a4ff6fd6),
-                ],
-                [
-                    f64::from_bits(0x3fea4c5c5a8d3bcf),
-                    f64::from_bits(0xbfdf6c3bead38336),
-                    f64::from_bits(0xbfd27fb7eb46d791),
-                ],
-                [
-                    f64::from_bits(0x3fcf2d1d50fd992a),
-                    f64::from_bits(0xbfc3f39dff275e15),
-                    f64::from_bits(0x3feea2048c346abf),
-                ],
-                f64::from_bits(0x3ffa000000000000),
-            ),
-        ),
-        // count random: exact 4, float 2, distance 8.4375e-1, root gap 1.4346626177640887e-1
-        (
-            circle_u(
-                [
-                    f64::from_bits(0x4022000000000000),
-                    f64::from_bits(0x4011000000000000),
-                    f64::from_bits(0xc01e800000000000),
-                ],
-                [
-                    f64::from_bits(0x3fe999999999999a),
-                    f64::from_bits(0x3fe3333333333334),
-                    f64::from_bits(0x0),
-                ],
-                [
-                    f64::from_bits(0x3fe3333333333334),
-                    f64::from_bits(0xbfe999999999999a),
-                    f64::from_bits(0x0),
-                ],
-                f64::from_bits(0x3fd2000000000000),
-            ),
-            circle_u(
-                [
-                    f64::from_bits(0x401f899999999999),
-                    f64::from_bits(0x4011533333333333),
-                    f64::from_bits(0xc020080000000000),
-                ],
-                [
-                    f64::from_bits(0x3fe999999999999a),
-                    f64::from_bits(0x3fe3333333333333),
-                    f64::from_bits(0x3c80000000000001),
-                ],
-                [
-                    f64::from_bits(0x3fd37ed186b204bb),
-                    f64::from_bits(0xbfd9fe6cb398064d),
-                    f64::from_bits(0xbfeb91b91b91b91c),
-                ],
-                f64::from_bits(0x3ff1400000000000),
-            ),
-        ),
-        // count random: exact 4, float 2, distance 3.75e-1, root gap 1.1061969664322466e0
-        (
-            circle_u(
-                [
-                    f64::from_bits(0x4009000000000000),
-                    f64::from_bits(0x4017000000000000),
-                    f64::from_bits(0x400b000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfd10f1bbaffbb76),
-                    f64::from_bits(0xbfeea810d45ba4f8),
-                    f64::from_bits(0x3fbb0abf795d22d7),
-                ],
-                [
-                    f64::from_bits(0x3fc7f683a71c0956),
-                    f64::from_bits(0xbfc459324c1d8736),
-                    f64::from_bits(0xbfef05164c930762),
-                ],
-                f64::from_bits(0x3ff3c00000000000),
-            ),
-            circle_u(
-                [
-                    f64::from_bits(0x40069159c52c549b),
-                    f64::from_bits(0x4019088b39dee05e),
-                    f64::from_bits(0x400d58511673bdc0),
-                ],
-                [
-                    f64::from_bits(0x3fd10f1bbaffbb76),
-                    f64::from_bits(0x3feea810d45ba4f8),
-                    f64::from_bits(0xbfbb0abf795d22d7),
-                ],
-                [
-                    f64::from_bits(0x3fee4140adcd9683),
-                    f64::from_bits(0xbfce8ab0c957a0d9),
-                    f64::from_bits(0x3fcc61754f36a860),
-                ],
-                f64::from_bits(0x3fec800000000000),
-            ),
-        ),
-    ];
-    for (a, b) in cases {
-        let bn = binormals(&a, &b, None, None);
-        eprintln!(
-            "n {} {:?} ra {} rb {} cross {:e}",
-            bn.items.len(),
-            bn.multiplicity,
-            a.radius,
-            b.radius,
-            a.normal.cross(&b.normal).norm()
-        );
-        for x in bn.items.iter() {
-            eprintln!("   {:.6} {:.6} {:.6}", x.angle_a, x.angle_b, x.distance);
-        }
-        for (x, y) in [(a, b), (b, a)] {
-            let lp = frame::LocalPair::new(&x, &y).unwrap();
-            let th = binormal::theta_roots(&lp, None).unwrap();
-            eprintln!(
-                "  param rb {}: {:?}",
-                y.radius,
-                th.iter().map(|r| (r.lo, r.theta, r.hi)).collect::<Vec<_>>()
-            );
-            for t in [0.0, PI] {
-                let q = lp.pb(t);
-                eprintln!("    theta {t}: rho {:e} z {:e}", q.x.hypot(q.y), q.z);
+fn eight_binormals_pinned() {
+    for (ra, c, u, v, rb, expected) in eight_binormal_cases() {
+        let a = circle_u([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], ra);
+        let (u, v) = (Vector3::from(u), Vector3::from(v));
+        let b = circle_u(c, u.cross(&v).into(), u.into(), rb);
+        for (x, y, swapped) in [(a, b, false), (b, a, true)] {
+            let bn = binormals(&x, &y, None, None);
+            assert_eq!(bn.multiplicity, Multiplicity::Finite);
+            assert_eq!(bn.items.len(), 8, "{:?}", bn.items);
+            for &(theta, len) in &expected {
+                let hit = bn.items.iter().find(|item| {
+                    let t = if swapped { item.angle_a } else { item.angle_b };
+                    let d = (t - theta).rem_euclid(TAU);
+                    d.min(TAU - d) <= PIN_ANGLE_TOL
+                });
+                let hit = hit.unwrap_or_else(|| panic!("theta {theta} missing: {:?}", bn.items));
+                assert!(
+                    (hit.distance - len).abs() <= PIN_LENGTH_TOL,
+                    "{hit:?} vs {len}"
+                );
             }
-            for flip in [false, true] {
-                let hp = poly8::half_poly(&lp, flip);
-                eprintln!("    {:?} noise {:e}", hp.coeffs, hp.noise);
-                let mut v = vec![];
-                for k in 0..=20 {
-                    let s = k as f64 / 20.0;
-                    v.push(format!("{:.2e}", crate::poly::solve::eval(&hp.coeffs, s)));
-                }
-                eprintln!("    {}", v.join(" "));
-            }
+            let min = expected.iter().map(|e| e.1).fold(f64::INFINITY, f64::min);
+            assert!((min_distance(&x, &y).distance - min).abs() <= PIN_LENGTH_TOL);
         }
     }
+}
+
+/// Random general pairs (radii 0.2..1.2, centres within 1.5) take the certified fast path,
+/// and its answer agrees with the dense-sampling oracle (to the oracle's accuracy, 1e-9).
+#[test]
+fn general_pairs_are_certified_and_agree_with_the_oracle() {
+    let mut rng = Rng(5);
+    let mut certified_count = 0;
+    for _ in 0..300 {
+        let a = Circle3::new(
+            Point3::from(rng.unit() * rng.range(0.0, 1.0)),
+            rng.unit(),
+            rng.range(0.2, 1.2),
+        )
+        .unwrap();
+        let b = Circle3::new(
+            Point3::from(rng.unit() * rng.range(0.0, 1.5)),
+            rng.unit(),
+            rng.range(0.2, 1.2),
+        )
+        .unwrap();
+        let (x, y) = if b.radius <= a.radius { (a, b) } else { (b, a) };
+        let lp = frame::LocalPair::new(&x, &y).unwrap();
+        let oracle = oracle_min(&a, &b);
+        if let Some(m) = certified::certified_min(&lp) {
+            certified_count += 1;
+            assert!(
+                (m.dist * lp.scale - oracle).abs() <= 1e-9,
+                "{} vs {oracle}",
+                m.dist * lp.scale
+            );
+        }
+        assert!((min_distance(&a, &b).distance - oracle).abs() <= 1e-9);
+    }
+    assert!(certified_count >= 290, "{certified_count}");
 }

@@ -20,6 +20,26 @@ const STACK_CAP: usize = 64;
 /// Smallest interval width bisection will produce (below this, doubles are adjacent).
 const MIN_WIDTH: f64 = 1e-15;
 
+/// Rows of the binomial table used by [`horner_bernstein`] (degrees below this avoid a
+/// division per term).
+pub const BINOM_ROWS: usize = 17;
+
+/// `BINOM[n][k]` = C(n, k) (exact in f64 for n < 17).
+pub const BINOM: [[f64; BINOM_ROWS]; BINOM_ROWS] = {
+    let mut t = [[0.0; BINOM_ROWS]; BINOM_ROWS];
+    let mut n = 0;
+    while n < BINOM_ROWS {
+        t[n][0] = 1.0;
+        let mut k = 1;
+        while k <= n {
+            t[n][k] = t[n - 1][k - 1] + if k < n { t[n - 1][k] } else { 0.0 };
+            k += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
 /// Evaluates the Bernstein polynomial with coefficients `c` at `t` in O(n) (Horner on
 /// t/(1-t), mirrored for t > 1/2 so the ratio stays <= 1).
 pub fn eval(c: &[f64], t: f64) -> f64 {
@@ -44,11 +64,18 @@ fn horner_bernstein(c: &[f64], t: f64, map: impl Fn(f64) -> f64) -> f64 {
         (t, (1.0 - t) / t, true)
     };
     let coef = |i: usize| map(if rev { c[n - i] } else { c[i] });
-    let mut binom = 1.0;
     let mut acc = coef(n);
-    for i in (0..n).rev() {
-        binom = binom * (i + 1) as f64 / (n - i) as f64;
-        acc = acc * r + binom * coef(i);
+    if n < BINOM_ROWS {
+        let row = &BINOM[n];
+        for i in (0..n).rev() {
+            acc = acc * r + row[i] * coef(i);
+        }
+    } else {
+        let mut binom = 1.0;
+        for i in (0..n).rev() {
+            binom = binom * (i + 1) as f64 / (n - i) as f64;
+            acc = acc * r + binom * coef(i);
+        }
     }
     acc * s.powi(n as i32)
 }
@@ -264,10 +291,14 @@ const SPLIT_FRACTIONS: [f64; 5] = [0.5, 0.4375, 0.5625, 0.375, 0.625];
 /// bound (a flat stretch), the one with the largest |c| is used.
 fn split_point(c: &[f64], a: f64, b: f64) -> f64 {
     let mut best = (0.5 * (a + b), -1.0);
+    // zero_tolerance(c, t, 0) <= this bound (sum |b_i| B_i(t) <= max |b_i|): values above it
+    // are certain without the second evaluation.
+    let n = (c.len() - 1).max(1) as f64;
+    let cheap = EVAL_NOISE_PER_DEGREE * n * c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     for frac in SPLIT_FRACTIONS {
         let mid = a + frac * (b - a);
         let v = eval(c, mid).abs();
-        if v > zero_tolerance(c, mid, 0.0) {
+        if v > cheap || v > zero_tolerance(c, mid, 0.0) {
             return mid;
         }
         if v > best.1 {
@@ -449,7 +480,14 @@ pub fn root_clusters_into(
         push(1.0, RootKind::Even, &mut count);
     }
     let list = &mut cand[..count];
-    list.sort_by(|p, q| p.0.total_cmp(&q.0));
+    // Insertion sort: the list is short and already made of two sorted runs.
+    for i in 1..list.len() {
+        let mut j = i;
+        while j > 0 && list[j - 1].0 > list[j].0 {
+            list.swap(j - 1, j);
+            j -= 1;
+        }
+    }
     // Merge clusters.
     let mut i = 0;
     while i < list.len() {

@@ -111,6 +111,19 @@ pub struct Case {
     pub analytic: Option<f64>,
 }
 
+impl Case {
+    /// The exact pair in A's canonical frame (before the rigid motion).
+    pub fn exact_pair(&self) -> ExactPair {
+        ExactPair {
+            ra: self.ra.clone(),
+            c: self.b.c.clone(),
+            u: self.b.u.clone(),
+            v: self.b.v.clone(),
+            rb: self.b.r.clone(),
+        }
+    }
+}
+
 /// SplitMix64.
 pub struct Rng(pub u64);
 impl Rng {
@@ -450,13 +463,7 @@ pub fn run_case(case: &Case) -> Outcome {
     };
     let (af, bf) = (am.to_f64(), bm.to_f64());
     let m = min_distance(&af, &bf);
-    let pair = ExactPair {
-        ra: case.ra.clone(),
-        c: case.b.c.clone(),
-        u: case.b.u.clone(),
-        v: case.b.v.clone(),
-        rb: case.b.r.clone(),
-    };
+    let pair = case.exact_pair();
     let cnorm = case
         .b
         .c
@@ -706,6 +713,47 @@ impl std::fmt::Display for Summary {
     }
 }
 
+/// Prints random pairs (A canonical) with exactly 8 binormals whose roots are at least
+/// `min_gap` apart, with the exact binormal angles on B and lengths.
+pub fn print_eight(count: usize, seed: u64, min_gap: f64) {
+    let mut rng = Rng(seed);
+    for _ in 0..count {
+        let case = random_case(&mut rng);
+        let pair = case.exact_pair();
+        let Some(res) = pair.analyse() else { continue };
+        if res.root_count != 8 || res.min_root_gap < min_gap {
+            continue;
+        }
+        let f = |x: &Rational| format!("{:?}", x.to_f64());
+        let v = |x: &RVec| format!("[{}, {}, {}]", f(&x[0]), f(&x[1]), f(&x[2]));
+        println!(
+            "// ra {}, B centre {}, u {}, v {}, rb {} (exact: {} / {} / {} / {})",
+            f(&pair.ra),
+            v(&pair.c),
+            v(&pair.u),
+            v(&pair.v),
+            f(&pair.rb),
+            pair.ra,
+            pair.c
+                .iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(","),
+            pair.u
+                .iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(","),
+            pair.rb
+        );
+        let mut b = res.binormals.clone();
+        b.sort_by(|x, y| x.0.total_cmp(&y.0));
+        for (theta, len) in b {
+            println!("//   theta {theta:?} length {len:?}");
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -715,14 +763,11 @@ mod tests {
         let s = run(1500, 1, 1);
         eprintln!("{s}");
         assert_eq!(s.total().1, 0, "{s}");
-        // Known limitation: a few random pairs (~0.4%) lose or gain a binormal against the
-        // exact count (near-tangential double roots, see the closing report); distances are
-        // unaffected. Bound the rate so a regression still fails.
-        let random = s
-            .per_family
-            .iter()
-            .find(|e| e.0 == "random")
-            .map_or(0, |e| e.1 + e.2);
-        assert!(s.count_mismatch_random * 100 <= random, "{s}");
+        // Binormal counts: in the random family every mismatch with the exact Sturm count
+        // must be a pair of exact roots closer than CLUSTER_GAP (not resolvable in double
+        // precision, see its doc comment). Perturbed catalogue entries are exempt: within
+        // 1e-14..1e-4 of a continuum the polynomial is within noise of zero, and the count
+        // of its roots is not a double-precision quantity.
+        assert_eq!(s.count_mismatch_random_resolvable, 0, "{s}");
     }
 }

@@ -373,6 +373,48 @@ impl ExactPair {
         lhs > Float::with_val(PREC, &self.ra) * bxy
     }
 
+    /// Length of the binormal at a root theta of P (off A's axis): the foot on A is the near
+    /// or the far point, whichever makes (B - K) . B' vanish.
+    fn binormal_length(&self, cos: &Float, sin: &Float) -> f64 {
+        let q: Vec<Float> = (0..3)
+            .map(|k| {
+                let mut x = Float::with_val(PREC, &self.c[k]);
+                x += Float::with_val(PREC, &Rational::from(&self.rb * &self.u[k])) * cos;
+                x += Float::with_val(PREC, &Rational::from(&self.rb * &self.v[k])) * sin;
+                x
+            })
+            .collect();
+        let dq: Vec<Float> = (0..3)
+            .map(|k| {
+                let mut x = Float::with_val(PREC, &Rational::from(&self.rb * &self.v[k])) * cos;
+                x -= Float::with_val(PREC, &Rational::from(&self.rb * &self.u[k])) * sin;
+                x
+            })
+            .collect();
+        let rho = Float::with_val(PREC, q[0].clone().square() + q[1].clone().square()).sqrt();
+        let ra = Float::with_val(PREC, &self.ra);
+        let mut best = (f64::INFINITY, f64::NAN);
+        for sign in [1i32, -1] {
+            let k = Float::with_val(PREC, &ra * sign) / &rho;
+            let d: Vec<Float> = vec![
+                Float::with_val(PREC, &q[0] - Float::with_val(PREC, &k * &q[0])),
+                Float::with_val(PREC, &q[1] - Float::with_val(PREC, &k * &q[1])),
+                q[2].clone(),
+            ];
+            let mut res = Float::with_val(PREC, 0);
+            let mut len = Float::with_val(PREC, 0);
+            for j in 0..3 {
+                res += Float::with_val(PREC, &d[j] * &dq[j]);
+                len += Float::with_val(PREC, d[j].clone().square());
+            }
+            let r = res.abs().to_f64();
+            if r < best.0 {
+                best = (r, len.sqrt().to_f64());
+            }
+        }
+        best.1
+    }
+
     /// Distance from B(theta) to circle A at precision PREC, theta given by (cos, sin).
     fn dist_at(&self, cos: &Float, sin: &Float) -> Float {
         let comp = |k: usize| {
@@ -427,12 +469,17 @@ impl ExactPair {
             thetas.push(std::f64::consts::PI);
         }
         let mut spurious = 0;
+        let mut binormals = Vec::new();
         for u in &roots {
             let u2 = Float::with_val(PREC, u * u);
             let den = Float::with_val(PREC, &one + &u2);
             let cos = Float::with_val(PREC, &one - &u2) / &den;
             let sin = Float::with_val(PREC, u * 2u32) / &den;
-            spurious += usize::from(self.spurious_axis_root(&cos, &sin));
+            let sp = self.spurious_axis_root(&cos, &sin);
+            spurious += usize::from(sp);
+            if !sp {
+                binormals.push((2.0 * u.to_f64().atan(), self.binormal_length(&cos, &sin)));
+            }
             let d = self.dist_at(&cos, &sin);
             if d < min {
                 min = d;
@@ -440,7 +487,11 @@ impl ExactPair {
         }
         if at_infinity {
             let (cos, sin) = (Float::with_val(PREC, -1), Float::with_val(PREC, 0));
-            spurious += usize::from(self.spurious_axis_root(&cos, &sin));
+            let sp = self.spurious_axis_root(&cos, &sin);
+            spurious += usize::from(sp);
+            if !sp {
+                binormals.push((std::f64::consts::PI, self.binormal_length(&cos, &sin)));
+            }
             let d = self.dist_at(&Float::with_val(PREC, -1), &Float::with_val(PREC, 0));
             if d < min {
                 min = d;
@@ -449,6 +500,7 @@ impl ExactPair {
         Some(ExactResult {
             root_count: finite + usize::from(at_infinity) - spurious,
             spurious_roots: spurious,
+            binormals,
             min_distance: min,
             min_root_gap: min_circular_gap(&mut thetas),
         })
@@ -463,6 +515,8 @@ pub struct ExactResult {
     pub root_count: usize,
     /// Roots of P where B(theta) is on A's axis without a binormal there.
     pub spurious_roots: usize,
+    /// (theta, binormal length) for each non-spurious root (theta = 2 atan(u) in (-pi, pi]).
+    pub binormals: Vec<(f64, f64)>,
     /// Minimum distance (PREC bits).
     pub min_distance: Float,
     /// Smallest angular separation of two distinct roots theta (radians, on the circle);

@@ -22,6 +22,17 @@ enum Command {
         #[arg(long, default_value_t = 20)]
         motions: usize,
     },
+    /// Search random rational pairs for exactly 8 binormals (exact Sturm count) and print
+    /// them as pinned test vectors.
+    Eight {
+        #[arg(long, default_value_t = 2000)]
+        count: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Smallest separation of the 8 roots theta (radians) for a case to be printed.
+        #[arg(long, default_value_t = 0.05)]
+        min_gap: f64,
+    },
 }
 
 fn main() {
@@ -38,5 +49,10 @@ fn main() {
                 std::process::exit(1);
             }
         }
+        Command::Eight {
+            count,
+            seed,
+            min_gap,
+        } => verify::circles::print_eight(count, seed, min_gap),
     }
 }
