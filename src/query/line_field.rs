@@ -18,7 +18,7 @@
 //! every caller measures each angle exactly, so extra angles are harmless, and none is lost.
 
 use super::sweep::ParamCircle;
-use crate::poly::solve::{roots_candidate_len, roots_into, roots_scratch_len, RootKind};
+use crate::poly::solve::{roots_candidate_len, roots_into, roots_scratch_len, RootKind, BINOM};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
@@ -52,22 +52,6 @@ fn abs<const N: usize>(p: &Poly<N>) -> Poly<N> {
 fn max_abs<const N: usize>(p: &Poly<N>) -> f64 {
     p.iter().fold(0.0, |m, c| m.max(c.abs()))
 }
-
-/// C(n, k) for n <= 8.
-const BINOM: [[f64; 9]; 9] = {
-    let mut t = [[0.0; 9]; 9];
-    let mut n = 0;
-    while n < 9 {
-        t[n][0] = 1.0;
-        let mut k = 1;
-        while k <= n {
-            t[n][k] = t[n - 1][k - 1] + t[n - 1][k];
-            k += 1;
-        }
-        n += 1;
-    }
-    t
-};
 
 /// Bernstein product: degrees `M - 1` and `N - 1` into `R - 1 = M + N - 2`.
 fn mul<const M: usize, const N: usize, const R: usize>(a: &Poly<M>, b: &Poly<N>) -> Poly<R> {
