@@ -20,15 +20,19 @@ const EPS: [f64; 3] = [1e-3, 1e-4, 1e-5];
 /// Poses per measured batch.
 const POSES: usize = 16;
 
-/// Deterministic random separated poses: B's origin 1.6..2.6 from A's, random rotation.
-fn poses() -> Vec<Isometry3<f64>> {
-    let mut s = 0x9e3779b97f4a7c15u64;
-    let mut f = move || {
+/// A deterministic uniform generator on [0, 1) (64-bit LCG, top 53 bits).
+fn uniform(mut s: u64) -> impl FnMut() -> f64 {
+    move || {
         s = s
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
         (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    }
+}
+
+/// Deterministic random separated poses: B's origin 1.6..2.6 from A's, random rotation.
+fn poses() -> Vec<Isometry3<f64>> {
+    let mut f = uniform(0x9e3779b97f4a7c15);
     (0..POSES)
         .map(|_| {
             let dir = Vector3::new(f() - 0.5, f() - 0.5, f() - 0.5).normalize();
@@ -127,13 +131,7 @@ fn bound_kinds(c: &mut Criterion) {
 fn patch_kernels(c: &mut Criterion) {
     use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
     use revdist::query::{Patch, ProfileArc};
-    let mut s = 0x2545f4914f6cdd1du64;
-    let mut f = move || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut f = uniform(0x2545f4914f6cdd1d);
     let arc = |f: &mut dyn FnMut() -> f64| loop {
         let a = ProfileArc::Arc {
             center: nalgebra::Point2::new(0.2 + f(), f() - 0.5),

@@ -501,6 +501,11 @@ fn tangent_coplanar_circles_tilted_about_the_contact_tangent() {
     }
 }
 
+/// A vector from the bit patterns of its coordinates (pinned regression inputs).
+fn bits(b: [u64; 3]) -> [f64; 3] {
+    b.map(f64::from_bits)
+}
+
 fn circle_u(c: [f64; 3], n: [f64; 3], u: [f64; 3], r: f64) -> Circle3 {
     Circle3::with_u_axis(Point3::from(c), Vector3::from(n), Vector3::from(u), r).unwrap()
 }
@@ -522,39 +527,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // tangent along axis at centre kind 2 eps 1e-4: exact 9.999999600079984e-1
         (
             circle_u(
-                [
-                    f64::from_bits(0xc011000000000000),
-                    f64::from_bits(0xc002000000000000),
-                    f64::from_bits(0x4014000000000000),
-                ],
-                [
-                    f64::from_bits(0x3fd36561ce33ff73),
-                    f64::from_bits(0x3feb07d748381fea),
-                    f64::from_bits(0x3fdc3bf9f284e227),
-                ],
-                [
-                    f64::from_bits(0xbfdf311becbdd55c),
-                    f64::from_bits(0x3fe12053a30256aa),
-                    f64::from_bits(0xbfe61415759d3b4a),
-                ],
+                bits([0xc011000000000000, 0xc002000000000000, 0x4014000000000000]),
+                bits([0x3fd36561ce33ff73, 0x3feb07d748381fea, 0x3fdc3bf9f284e227]),
+                bits([0xbfdf311becbdd55c, 0x3fe12053a30256aa, 0xbfe61415759d3b4a]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0xc012f311becbdd55),
-                    f64::from_bits(0xbffb6fd62e7ed4ab),
-                    f64::from_bits(0x40113d7d514c5896),
-                ],
-                [
-                    f64::from_bits(0xbfea340d29dd526b),
-                    f64::from_bits(0xbf7784c690c58861),
-                    f64::from_bits(0x3fe25dfd1ac383fa),
-                ],
-                [
-                    f64::from_bits(0xbfdf311becbdd55c),
-                    f64::from_bits(0x3fe12053a30256aa),
-                    f64::from_bits(0xbfe61415759d3b4a),
-                ],
+                bits([0xc012f311becbdd55, 0xbffb6fd62e7ed4ab, 0x40113d7d514c5896]),
+                bits([0xbfea340d29dd526b, 0xbf7784c690c58861, 0x3fe25dfd1ac383fa]),
+                bits([0xbfdf311becbdd55c, 0x3fe12053a30256aa, 0xbfe61415759d3b4a]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             9.999999600079984e-1,
@@ -562,39 +543,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // tangent along axis at centre kind 2 eps 1e-4: exact 9.999999600079984e-1
         (
             circle_u(
-                [
-                    f64::from_bits(0xc023000000000000),
-                    f64::from_bits(0x401b800000000000),
-                    f64::from_bits(0x4014000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfce025e80b95202),
-                    f64::from_bits(0xbfe01f96b4519aa7),
-                    f64::from_bits(0x3fea9a8576537261),
-                ],
-                [
-                    f64::from_bits(0xbfea9a8576537261),
-                    f64::from_bits(0xbfd5b79bf81a52ec),
-                    f64::from_bits(0xbfdc2aa50d07c3fc),
-                ],
+                bits([0xc023000000000000, 0x401b800000000000, 0x4014000000000000]),
+                bits([0xbfce025e80b95202, 0xbfe01f96b4519aa7, 0x3fea9a8576537261]),
+                bits([0xbfea9a8576537261, 0xbfd5b79bf81a52ec, 0xbfdc2aa50d07c3fc]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0xc024a9a857653726),
-                    f64::from_bits(0x401a2486407e5ad1),
-                    f64::from_bits(0x40123d55af2f83c0),
-                ],
-                [
-                    f64::from_bits(0x3fe01f34595258e1),
-                    f64::from_bits(0xbfe96c1866443ae7),
-                    f64::from_bits(0xbfd5b4e28b164518),
-                ],
-                [
-                    f64::from_bits(0xbfea9a8576537261),
-                    f64::from_bits(0xbfd5b79bf81a52ed),
-                    f64::from_bits(0xbfdc2aa50d07c3fd),
-                ],
+                bits([0xc024a9a857653726, 0x401a2486407e5ad1, 0x40123d55af2f83c0]),
+                bits([0x3fe01f34595258e1, 0xbfe96c1866443ae7, 0xbfd5b4e28b164518]),
+                bits([0xbfea9a8576537261, 0xbfd5b79bf81a52ed, 0xbfdc2aa50d07c3fd]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             9.999999600079984e-1,
@@ -602,39 +559,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-9 rb~1e1: exact 7.999999999803077e-10
         (
             circle_u(
-                [
-                    f64::from_bits(0x4013000000000000),
-                    f64::from_bits(0xc013800000000000),
-                    f64::from_bits(0xc016800000000000),
-                ],
-                [
-                    f64::from_bits(0x3fd91f1a515885fb),
-                    f64::from_bits(0xbfcc91cd9dc40bd3),
-                    f64::from_bits(0x3fec8d4cb3947a29),
-                ],
-                [
-                    f64::from_bits(0xbfea04c8f8d28ac5),
-                    f64::from_bits(0xbfe1347ea9ba79e1),
-                    f64::from_bits(0x3fcc91cd9dc40bd3),
-                ],
+                bits([0x4013000000000000, 0xc013800000000000, 0xc016800000000000]),
+                bits([0x3fd91f1a515885fb, 0xbfcc91cd9dc40bd3, 0x3fec8d4cb3947a29]),
+                bits([0xbfea04c8f8d28ac5, 0xbfe1347ea9ba79e1, 0x3fcc91cd9dc40bd3]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x4017183387f380ee),
-                    f64::from_bits(0x3ff9e7752b0a492a),
-                    f64::from_bits(0xc0236060a7514d28),
-                ],
-                [
-                    f64::from_bits(0xbfe1ce4f2326d51f),
-                    f64::from_bits(0x3fe1133cd4a9f773),
-                    f64::from_bits(0x3fe46190200b6ea2),
-                ],
-                [
-                    f64::from_bits(0xbfcbdd1b20a613f4),
-                    f64::from_bits(0xbfeaab12222516eb),
-                    f64::from_bits(0x3fe041b7aff52822),
-                ],
+                bits([0x4017183387f380ee, 0x3ff9e7752b0a492a, 0xc0236060a7514d28]),
+                bits([0xbfe1ce4f2326d51f, 0x3fe1133cd4a9f773, 0x3fe46190200b6ea2]),
+                bits([0xbfcbdd1b20a613f4, 0xbfeaab12222516eb, 0x3fe041b7aff52822]),
                 f64::from_bits(0x4020e00000000000),
             ),
             7.999999999803077e-10,
@@ -642,39 +575,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-12 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0xc019000000000000),
-                    f64::from_bits(0x3ff8000000000000),
-                    f64::from_bits(0xbff8000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfd026d6bbd86a10),
-                    f64::from_bits(0x3fd317b6cdc55e4c),
-                    f64::from_bits(0x3fed74b400bf34d8),
-                ],
-                [
-                    f64::from_bits(0xbfd6bbd86a0f4fbc),
-                    f64::from_bits(0x3feb66e2af25e7ba),
-                    f64::from_bits(0xbfd7fe8196504ab2),
-                ],
+                bits([0xc019000000000000, 0x3ff8000000000000, 0xbff8000000000000]),
+                bits([0xbfd026d6bbd86a10, 0x3fd317b6cdc55e4c, 0x3fed74b400bf34d8]),
+                bits([0xbfd6bbd86a0f4fbc, 0x3feb66e2af25e7ba, 0xbfd7fe8196504ab2]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0xc01a6bbd8d189bd6),
-                    f64::from_bits(0x4002d9b83bc0d8c0),
-                    f64::from_bits(0xbffdffa0240da420),
-                ],
-                [
-                    f64::from_bits(0x3fd026d6bbd86a0f),
-                    f64::from_bits(0xbfd317b6cdc55e4c),
-                    f64::from_bits(0xbfed74b400bf34d8),
-                ],
-                [
-                    f64::from_bits(0x3fbc320ad47e39e4),
-                    f64::from_bits(0x3fee86dc0189a908),
-                    f64::from_bits(0xbfd1daad4d834a28),
-                ],
+                bits([0xc01a6bbd8d189bd6, 0x4002d9b83bc0d8c0, 0xbffdffa0240da420]),
+                bits([0x3fd026d6bbd86a0f, 0xbfd317b6cdc55e4c, 0xbfed74b400bf34d8]),
+                bits([0x3fbc320ad47e39e4, 0x3fee86dc0189a908, 0xbfd1daad4d834a28]),
                 f64::from_bits(0x3ead5c31593e5fb7),
             ),
             0e0,
@@ -682,39 +591,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-8 rb~1e-4: exact 9.931196304393793e-9
         (
             circle_u(
-                [
-                    f64::from_bits(0x4023400000000000),
-                    f64::from_bits(0x401d800000000000),
-                    f64::from_bits(0xc003000000000000),
-                ],
-                [
-                    f64::from_bits(0x3fd211a45ffcf6fd),
-                    f64::from_bits(0x3fe26cb2b281f1c5),
-                    f64::from_bits(0xbfe88de54097c28a),
-                ],
-                [
-                    f64::from_bits(0xbfc656503e38b863),
-                    f64::from_bits(0x3fea27a5b3ee2b10),
-                    f64::from_bits(0x3fe19229ec75fe4b),
-                ],
+                bits([0x4023400000000000, 0x401d800000000000, 0xc003000000000000]),
+                bits([0x3fd211a45ffcf6fd, 0x3fe26cb2b281f1c5, 0xbfe88de54097c28a]),
+                bits([0xbfc656503e38b863, 0x3fea27a5b3ee2b10, 0x3fe19229ec75fe4b]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x4022e6ac3abc2457),
-                    f64::from_bits(0x40206283087b901e),
-                    f64::from_bits(0xbffd376389723d82),
-                ],
-                [
-                    f64::from_bits(0x3fc1f23e55303695),
-                    f64::from_bits(0xbfec22766bcf9f63),
-                    f64::from_bits(0xbfdd24598a7c9f54),
-                ],
-                [
-                    f64::from_bits(0xbfd340f3dccb585f),
-                    f64::from_bits(0xbfde765306ed8f7f),
-                    f64::from_bits(0x3fea71ea5a1ad62f),
-                ],
+                bits([0x4022e6ac3abc2457, 0x40206283087b901e, 0xbffd376389723d82]),
+                bits([0x3fc1f23e55303695, 0xbfec22766bcf9f63, 0xbfdd24598a7c9f54]),
+                bits([0xbfd340f3dccb585f, 0xbfde765306ed8f7f, 0x3fea71ea5a1ad62f]),
                 f64::from_bits(0x3f223a29c779a6b5),
             ),
             9.931196304393793e-9,
@@ -722,39 +607,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-8 rb~1e-2: exact 9.503345159475924e-9
         (
             circle_u(
-                [
-                    f64::from_bits(0x4022c00000000000),
-                    f64::from_bits(0xc013000000000000),
-                    f64::from_bits(0xbfec000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfee9870caae7bd0),
-                    f64::from_bits(0xbfd2c03b8b7c99bb),
-                    f64::from_bits(0xbf712d28dd935c21),
-                ],
-                [
-                    f64::from_bits(0x3fcf3d558630cf45),
-                    f64::from_bits(0xbfe93a5405706f13),
-                    f64::from_bits(0xbfe2122da91db36c),
-                ],
+                bits([0x4022c00000000000, 0xc013000000000000, 0xbfec000000000000]),
+                bits([0xbfee9870caae7bd0, 0xbfd2c03b8b7c99bb, 0xbf712d28dd935c21]),
+                bits([0x3fcf3d558630cf45, 0xbfe93a5405706f13, 0xbfe2122da91db36c]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x402335a3f7e70b87),
-                    f64::from_bits(0xc016279c3eef6437),
-                    f64::from_bits(0xbff6fe6c9158ef9c),
-                ],
-                [
-                    f64::from_bits(0x3fb447eaa14cb237),
-                    f64::from_bits(0x3feae7a53e5bf79f),
-                    f64::from_bits(0x3fe1234190f7eda3),
-                ],
-                [
-                    f64::from_bits(0x3fef797f779440bd),
-                    f64::from_bits(0x3f95f931f8dccd4a),
-                    f64::from_bits(0xbfc6ef8b8a7725d5),
-                ],
+                bits([0x402335a3f7e70b87, 0xc016279c3eef6437, 0xbff6fe6c9158ef9c]),
+                bits([0x3fb447eaa14cb237, 0x3feae7a53e5bf79f, 0x3fe1234190f7eda3]),
+                bits([0x3fef797f779440bd, 0x3f95f931f8dccd4a, 0xbfc6ef8b8a7725d5]),
                 f64::from_bits(0x3f8dc28f5c28f5c2),
             ),
             9.503345159475924e-9,
@@ -762,39 +623,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-11 rb~1e-4: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x401e800000000000),
-                    f64::from_bits(0x4001000000000000),
-                    f64::from_bits(0x4017000000000000),
-                ],
-                [
-                    f64::from_bits(0x3fe2a3192a3192a3),
-                    f64::from_bits(0xbfd27ec527ec527f),
-                    f64::from_bits(0xbfe8503985039851),
-                ],
-                [
-                    f64::from_bits(0x3fbe7671e7671e76),
-                    f64::from_bits(0x3fee8ea9e8ea9e8f),
-                    f64::from_bits(0xbfd1684116841169),
-                ],
+                bits([0x401e800000000000, 0x4001000000000000, 0x4017000000000000]),
+                bits([0x3fe2a3192a3192a3, 0xbfd27ec527ec527f, 0xbfe8503985039851]),
+                bits([0x3fbe7671e7671e76, 0x3fee8ea9e8ea9e8f, 0xbfd1684116841169]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x401ef9d5d3c6583a),
-                    f64::from_bits(0x4008a3a9cf1c389e),
-                    f64::from_bits(0x4015e979078598fc),
-                ],
-                [
-                    f64::from_bits(0x3fe2a3192a3192a3),
-                    f64::from_bits(0xbfd27ec527ec527f),
-                    f64::from_bits(0xbfe8503985039851),
-                ],
-                [
-                    f64::from_bits(0x3fe9bb819bb819bc),
-                    f64::from_bits(0x3fb1684116841168),
-                    f64::from_bits(0x3fe2e5b32e5b32e6),
-                ],
+                bits([0x401ef9d5d3c6583a, 0x4008a3a9cf1c389e, 0x4015e979078598fc]),
+                bits([0x3fe2a3192a3192a3, 0xbfd27ec527ec527f, 0xbfe8503985039851]),
+                bits([0x3fe9bb819bb819bc, 0x3fb1684116841168, 0x3fe2e5b32e5b32e6]),
                 f64::from_bits(0x3ef3a92a30553261),
             ),
             0e0,
@@ -802,39 +639,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // rb~1e6 |c|~1e0: exact 1.499997265706065e6
         (
             circle_u(
-                [
-                    f64::from_bits(0x401d000000000000),
-                    f64::from_bits(0x3fd8000000000000),
-                    f64::from_bits(0x4023400000000000),
-                ],
-                [
-                    f64::from_bits(0xbfbb95f0111f458e),
-                    f64::from_bits(0x3feead5ca0484b26),
-                    f64::from_bits(0xbfd0dac878ce6ac7),
-                ],
-                [
-                    f64::from_bits(0x3fd61db9d8c30099),
-                    f64::from_bits(0xbfcb2b66604fe745),
-                    f64::from_bits(0xbfed4016d45cbeb9),
-                ],
+                bits([0x401d000000000000, 0x3fd8000000000000, 0x4023400000000000]),
+                bits([0xbfbb95f0111f458e, 0x3feead5ca0484b26, 0xbfd0dac878ce6ac7]),
+                bits([0x3fd61db9d8c30099, 0xbfcb2b66604fe745, 0xbfed4016d45cbeb9]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x40204225cfb99be2),
-                    f64::from_bits(0xbfe41ba5284ef3c0),
-                    f64::from_bits(0x402642d5ca0484b2),
-                ],
-                [
-                    f64::from_bits(0x3fe587581eefd367),
-                    f64::from_bits(0xbfe57554f8fdc072),
-                    f64::from_bits(0xbfd4016d45cbeb8c),
-                ],
-                [
-                    f64::from_bits(0x3fe4d863374b6e95),
-                    f64::from_bits(0x3fd58a7c64111e28),
-                    f64::from_bits(0x3fe5c26865c81d7d),
-                ],
+                bits([0x40204225cfb99be2, 0xbfe41ba5284ef3c0, 0x402642d5ca0484b2]),
+                bits([0x3fe587581eefd367, 0xbfe57554f8fdc072, 0xbfd4016d45cbeb8c]),
+                bits([0x3fe4d863374b6e95, 0x3fd58a7c64111e28, 0x3fe5c26865c81d7d]),
                 f64::from_bits(0x4136e36000000000),
             ),
             1.499997265706065e6,
@@ -842,39 +655,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-12 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x3ff2000000000000),
-                    f64::from_bits(0xc012800000000000),
-                    f64::from_bits(0x401d000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfe50e425d8d2062),
-                    f64::from_bits(0xbfe28a53f4ce4ae5),
-                    f64::from_bits(0xbfdec8b20a65039a),
-                ],
-                [
-                    f64::from_bits(0x3fbec8b20a65039c),
-                    f64::from_bits(0x3fe197412a82dd7c),
-                    f64::from_bits(0xbfea73f08a982ff9),
-                ],
+                bits([0x3ff2000000000000, 0xc012800000000000, 0x401d000000000000]),
+                bits([0xbfe50e425d8d2062, 0xbfe28a53f4ce4ae5, 0xbfdec8b20a65039a]),
+                bits([0x3fbec8b20a65039c, 0x3fe197412a82dd7c, 0xbfea73f08a982ff9]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x3ff3ec8c59ff6348),
-                    f64::from_bits(0xc0104d17ff7be869),
-                    f64::from_bits(0x4019b181afd691fa),
-                ],
-                [
-                    f64::from_bits(0x3fe50e425d8d2062),
-                    f64::from_bits(0x3fe28a53f4ce4ae5),
-                    f64::from_bits(0x3fdec8b20a65039a),
-                ],
-                [
-                    f64::from_bits(0xbfe7701330a42e61),
-                    f64::from_bits(0x3fd604f0e671af33),
-                    f64::from_bits(0x3fe2cceb3dd83f11),
-                ],
+                bits([0x3ff3ec8c59ff6348, 0xc0104d17ff7be869, 0x4019b181afd691fa]),
+                bits([0x3fe50e425d8d2062, 0x3fe28a53f4ce4ae5, 0x3fdec8b20a65039a]),
+                bits([0xbfe7701330a42e61, 0x3fd604f0e671af33, 0x3fe2cceb3dd83f11]),
                 f64::from_bits(0x3ebabd1aa821f299),
             ),
             0e0,
@@ -882,39 +671,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-9 rb~1e-5: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x4023000000000000),
-                    f64::from_bits(0xc01d800000000000),
-                    f64::from_bits(0xc008000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfe12627242d1263),
-                    f64::from_bits(0x3fe70e0917eb70e1),
-                    f64::from_bits(0x3fdc2b7d8769c2b7),
-                ],
-                [
-                    f64::from_bits(0x3feac2ea73d7ac2f),
-                    f64::from_bits(0x3fd869f5533986a0),
-                    f64::from_bits(0x3fd93462d7799347),
-                ],
+                bits([0x4023000000000000, 0xc01d800000000000, 0xc008000000000000]),
+                bits([0xbfe12627242d1263, 0x3fe70e0917eb70e1, 0x3fdc2b7d8769c2b7]),
+                bits([0x3feac2ea73d7ac2f, 0x3fd869f5533986a0, 0x3fd93462d7799347]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x4024ac2e1693adfa),
-                    f64::from_bits(0xc01bf9612ec5a028),
-                    f64::from_bits(0xc004d974b58fc2eb),
-                ],
-                [
-                    f64::from_bits(0x3fe12627242d1263),
-                    f64::from_bits(0xbfe70e0917eb70e1),
-                    f64::from_bits(0xbfdc2b7d8769c2b7),
-                ],
-                [
-                    f64::from_bits(0x3feac2ea73d7ac2f),
-                    f64::from_bits(0x3fd869f5533986a0),
-                    f64::from_bits(0x3fd93462d7799347),
-                ],
+                bits([0x4024ac2e1693adfa, 0xc01bf9612ec5a028, 0xc004d974b58fc2eb]),
+                bits([0x3fe12627242d1263, 0xbfe70e0917eb70e1, 0xbfdc2b7d8769c2b7]),
+                bits([0x3feac2ea73d7ac2f, 0x3fd869f5533986a0, 0x3fd93462d7799347]),
                 f64::from_bits(0x3ed5a07b352a8438),
             ),
             0e0,
@@ -922,39 +687,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-10 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x4008000000000000),
-                    f64::from_bits(0x3fe8000000000000),
-                    f64::from_bits(0xbffa000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfeb65533c6d954e),
-                    f64::from_bits(0xbfdffbce307fef3a),
-                    f64::from_bits(0x3fc0d8053e436015),
-                ],
-                [
-                    f64::from_bits(0x3fd57f477055fd1e),
-                    f64::from_bits(0xbfd60de4ff583794),
-                    f64::from_bits(0x3fec0d1ba870346f),
-                ],
+                bits([0x4008000000000000, 0x3fe8000000000000, 0xbffa000000000000]),
+                bits([0xbfeb65533c6d954e, 0xbfdffbce307fef3a, 0x3fc0d8053e436015]),
+                bits([0x3fd57f477055fd1e, 0xbfd60de4ff583794, 0x3fec0d1ba870346f]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x400aafe8a08f7183),
-                    f64::from_bits(0x3fd9f21d7c926bf6),
-                    f64::from_bits(0xbfe7f2e78065079b),
-                ],
-                [
-                    f64::from_bits(0xbfeb65533c6d954e),
-                    f64::from_bits(0xbfdffbce307fef3a),
-                    f64::from_bits(0x3fc0d8053e436015),
-                ],
-                [
-                    f64::from_bits(0x3fd57f477055fd1e),
-                    f64::from_bits(0xbfd60de4ff583794),
-                    f64::from_bits(0x3fec0d1ba870346f),
-                ],
+                bits([0x400aafe8a08f7183, 0x3fd9f21d7c926bf6, 0xbfe7f2e78065079b]),
+                bits([0xbfeb65533c6d954e, 0xbfdffbce307fef3a, 0x3fc0d8053e436015]),
+                bits([0x3fd57f477055fd1e, 0xbfd60de4ff583794, 0x3fec0d1ba870346f]),
                 f64::from_bits(0x3ebcd5f99c38b04a),
             ),
             0e0,
@@ -962,39 +703,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-10 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x4023400000000000),
-                    f64::from_bits(0xc010800000000000),
-                    f64::from_bits(0xc023800000000000),
-                ],
-                [
-                    f64::from_bits(0x3fe7e573fb24d367),
-                    f64::from_bits(0xbfe4f1305195539c),
-                    f64::from_bits(0xbfbe59d6b904efe5),
-                ],
-                [
-                    f64::from_bits(0x3fe47ca42349bb89),
-                    f64::from_bits(0x3fe82df8b73d1b46),
-                    f64::from_bits(0xbfc1b995f95cfecb),
-                ],
+                bits([0x4023400000000000, 0xc010800000000000, 0xc023800000000000]),
+                bits([0x3fe7e573fb24d367, 0xbfe4f1305195539c, 0xbfbe59d6b904efe5]),
+                bits([0x3fe47ca42349bb89, 0x3fe82df8b73d1b46, 0xbfc1b995f95cfecb]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x402487ca3b374e3d),
-                    f64::from_bits(0xc00af481d672e114),
-                    f64::from_bits(0xc023c6e67e0b424c),
-                ],
-                [
-                    f64::from_bits(0x3fe7e573fb24d367),
-                    f64::from_bits(0xbfe4f1305195539c),
-                    f64::from_bits(0xbfbe59d6b904efe5),
-                ],
-                [
-                    f64::from_bits(0x3fc71113d44b6ea5),
-                    f64::from_bits(0x3f9c2a690e007c4d),
-                    f64::from_bits(0x3fef76bb9bf69c88),
-                ],
+                bits([0x402487ca3b374e3d, 0xc00af481d672e114, 0xc023c6e67e0b424c]),
+                bits([0x3fe7e573fb24d367, 0xbfe4f1305195539c, 0xbfbe59d6b904efe5]),
+                bits([0x3fc71113d44b6ea5, 0x3f9c2a690e007c4d, 0x3fef76bb9bf69c88]),
                 f64::from_bits(0x3eb3660e51d25aab),
             ),
             0e0,
@@ -1002,39 +719,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-7 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x401c000000000000),
-                    f64::from_bits(0x3ffe000000000000),
-                    f64::from_bits(0x401c000000000000),
-                ],
-                [
-                    f64::from_bits(0x3fece434a9b10177),
-                    f64::from_bits(0xbfd4a05442b4cf25),
-                    f64::from_bits(0xbfd2366b14c5c73e),
-                ],
-                [
-                    f64::from_bits(0xbfb974269e92def3),
-                    f64::from_bits(0xbfe99d584c4d7911),
-                    f64::from_bits(0x3fe2ea2c967fad9d),
-                ],
+                bits([0x401c000000000000, 0x3ffe000000000000, 0x401c000000000000]),
+                bits([0x3fece434a9b10177, 0xbfd4a05442b4cf25, 0xbfd2366b14c5c73e]),
+                bits([0xbfb974269e92def3, 0xbfe99d584c4d7911, 0x3fe2ea2c967fad9d]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x401b9a2f4d57cc5b),
-                    f64::from_bits(0x3ff1315382abed20),
-                    f64::from_bits(0x401e5d455ec81047),
-                ],
-                [
-                    f64::from_bits(0x3fece434a9b10177),
-                    f64::from_bits(0xbfd4a05442b4cf23),
-                    f64::from_bits(0xbfd2366b14c5c73e),
-                ],
-                [
-                    f64::from_bits(0x3fd7eaef52cc3701),
-                    f64::from_bits(0x3fd0b4b12e66de3d),
-                    f64::from_bits(0x3fec7b591e04906a),
-                ],
+                bits([0x401b9a2f4d57cc5b, 0x3ff1315382abed20, 0x401e5d455ec81047]),
+                bits([0x3fece434a9b10177, 0xbfd4a05442b4cf23, 0xbfd2366b14c5c73e]),
+                bits([0x3fd7eaef52cc3701, 0x3fd0b4b12e66de3d, 0x3fec7b591e04906a]),
                 f64::from_bits(0x3eaf75104d551d68),
             ),
             0e0,
@@ -1042,39 +735,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-6 rb~1e-6: exact 8.636168555094445e-78
         (
             circle_u(
-                [
-                    f64::from_bits(0xbfe4000000000000),
-                    f64::from_bits(0xc001000000000000),
-                    f64::from_bits(0xc020c00000000000),
-                ],
-                [
-                    f64::from_bits(0xbfdc3860dc8bd40a),
-                    f64::from_bits(0x3fc1925909bf8cc3),
-                    f64::from_bits(0xbfec621a735d5285),
-                ],
-                [
-                    f64::from_bits(0x3fc3a6d67618b64d),
-                    f64::from_bits(0x3fef86cc86dc6c0a),
-                    f64::from_bits(0x3fb37f1984efab8f),
-                ],
+                bits([0xbfe4000000000000, 0xc001000000000000, 0xc020c00000000000]),
+                bits([0xbfdc3860dc8bd40a, 0x3fc1925909bf8cc3, 0xbfec621a735d5285]),
+                bits([0x3fc3a6d67618b64d, 0x3fef86cc86dc6c0a, 0x3fb37f1984efab8f]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0xbfde2c8f1ffcaf2b),
-                    f64::from_bits(0xbff23c9a123b6f8c),
-                    f64::from_bits(0xc0209901e5110e97),
-                ],
-                [
-                    f64::from_bits(0xbfdc3860dc8bd40c),
-                    f64::from_bits(0x3fc1925909bf8cc3),
-                    f64::from_bits(0xbfec621a735d5285),
-                ],
-                [
-                    f64::from_bits(0xbfe3b0c5b262f8fc),
-                    f64::from_bits(0x3fe58ad8e5307174),
-                    f64::from_bits(0x3fda3ee909f26a22),
-                ],
+                bits([0xbfde2c8f1ffcaf2b, 0xbff23c9a123b6f8c, 0xc0209901e5110e97]),
+                bits([0xbfdc3860dc8bd40c, 0x3fc1925909bf8cc3, 0xbfec621a735d5285]),
+                bits([0xbfe3b0c5b262f8fc, 0x3fe58ad8e5307174, 0x3fda3ee909f26a22]),
                 f64::from_bits(0x3ec040bfe3b03e20),
             ),
             8.636168555094445e-78,
@@ -1082,39 +751,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-9 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0xc024000000000000),
-                    f64::from_bits(0x401e000000000000),
-                    f64::from_bits(0x4001000000000000),
-                ],
-                [
-                    f64::from_bits(0x3feea43380403582),
-                    f64::from_bits(0xbfcf003bedac761e),
-                    f64::from_bits(0x3fc403e119731319),
-                ],
-                [
-                    f64::from_bits(0x3fc7537032d506da),
-                    f64::from_bits(0x3fedb8c4a3dde393),
-                    f64::from_bits(0x3fd4a68ac8fcd2b0),
-                ],
+                bits([0xc024000000000000, 0x401e000000000000, 0x4001000000000000]),
+                bits([0x3feea43380403582, 0xbfcf003bedac761e, 0x3fc403e119731319]),
+                bits([0x3fc7537032d506da, 0x3fedb8c4a3dde393, 0x3fd4a68ac8fcd2b0]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0xc023a2b24359662b),
-                    f64::from_bits(0x4020db8c4b4092be),
-                    f64::from_bits(0x400394d1c4e079a2),
-                ],
-                [
-                    f64::from_bits(0xbfeea43380403582),
-                    f64::from_bits(0x3fcf003bedac761f),
-                    f64::from_bits(0xbfc403e119731318),
-                ],
-                [
-                    f64::from_bits(0x3fc37b7a809b9b0a),
-                    f64::from_bits(0xbfa264a937ae66aa),
-                    f64::from_bits(0xbfef9b34132df706),
-                ],
+                bits([0xc023a2b24359662b, 0x4020db8c4b4092be, 0x400394d1c4e079a2]),
+                bits([0xbfeea43380403582, 0x3fcf003bedac761f, 0xbfc403e119731318]),
+                bits([0x3fc37b7a809b9b0a, 0xbfa264a937ae66aa, 0xbfef9b34132df706]),
                 f64::from_bits(0x3eab43526527a205),
             ),
             0e0,
@@ -1122,39 +767,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-11 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x401d800000000000),
-                    f64::from_bits(0x3ffc000000000000),
-                    f64::from_bits(0xc000000000000000),
-                ],
-                [
-                    f64::from_bits(0x3feef7bdef7bdef8),
-                    f64::from_bits(0x3f8a6d01a6d01a72),
-                    f64::from_bits(0x3fd01a6d01a6d01b),
-                ],
-                [
-                    f64::from_bits(0xbfbddb280514f67b),
-                    f64::from_bits(0x3fed0fe182392bd5),
-                    f64::from_bits(0x3fd9ba1fc3047258),
-                ],
+                bits([0x401d800000000000, 0x3ffc000000000000, 0xc000000000000000]),
+                bits([0x3feef7bdef7bdef8, 0x3f8a6d01a6d01a72, 0x3fd01a6d01a6d01b]),
+                bits([0xbfbddb280514f67b, 0x3fed0fe182392bd5, 0x3fd9ba1fc3047258]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x401d08934a45c256),
-                    f64::from_bits(0x400543f79b2089c0),
-                    f64::from_bits(0xbff99176adf2e9e7),
-                ],
-                [
-                    f64::from_bits(0x3feef7bdef7bdef8),
-                    f64::from_bits(0x3f8a6d01a6d01a6a),
-                    f64::from_bits(0x3fd01a6d01a6d01b),
-                ],
-                [
-                    f64::from_bits(0x3fc4a5294a5294a6),
-                    f64::from_bits(0x3fe789157891578a),
-                    f64::from_bits(0xbfe50edd50edd50f),
-                ],
+                bits([0x401d08934a45c256, 0x400543f79b2089c0, 0xbff99176adf2e9e7]),
+                bits([0x3feef7bdef7bdef8, 0x3f8a6d01a6d01a6a, 0x3fd01a6d01a6d01b]),
+                bits([0x3fc4a5294a5294a6, 0x3fe789157891578a, 0xbfe50edd50edd50f]),
                 f64::from_bits(0x3ec0c6f7a0b5ed8d),
             ),
             0e0,
@@ -1162,39 +783,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-6 rb~1e-4: exact 8.636168555094445e-78
         (
             circle_u(
-                [
-                    f64::from_bits(0x4024000000000000),
-                    f64::from_bits(0x401b000000000000),
-                    f64::from_bits(0x4022400000000000),
-                ],
-                [
-                    f64::from_bits(0x3fda50475bdfe375),
-                    f64::from_bits(0x3fb00e45932d7dc7),
-                    f64::from_bits(0xbfed19de1ac273f5),
-                ],
-                [
-                    f64::from_bits(0xbfc8e2ebd7534fbe),
-                    f64::from_bits(0xbfeeff1ba6cd2824),
-                    f64::from_bits(0xbfc3cd55cf1e8187),
-                ],
+                bits([0x4024000000000000, 0x401b000000000000, 0x4022400000000000]),
+                bits([0x3fda50475bdfe375, 0x3fb00e45932d7dc7, 0xbfed19de1ac273f5]),
+                bits([0xbfc8e2ebd7534fbe, 0xbfeeff1ba6cd2824, 0xbfc3cd55cf1e8187]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x40239c7553245cca),
-                    f64::from_bits(0x401720269af309c7),
-                    f64::from_bits(0x4021f0cb76750504),
-                ],
-                [
-                    f64::from_bits(0x3fda50475bdfe375),
-                    f64::from_bits(0x3fb00e45932d7dc7),
-                    f64::from_bits(0xbfed19de1ac273f5),
-                ],
-                [
-                    f64::from_bits(0xbfc8e2ebd7534fbe),
-                    f64::from_bits(0xbfeeff1ba6cd2824),
-                    f64::from_bits(0xbfc3cd55cf1e8187),
-                ],
+                bits([0x40239c7553245cca, 0x401720269af309c7, 0x4021f0cb76750504]),
+                bits([0x3fda50475bdfe375, 0x3fb00e45932d7dc7, 0xbfed19de1ac273f5]),
+                bits([0xbfc8e2ebd7534fbe, 0xbfeeff1ba6cd2824, 0xbfc3cd55cf1e8187]),
                 f64::from_bits(0x3f054c985f06f694),
             ),
             8.636168555094445e-78,
@@ -1202,39 +799,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-11 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x400c000000000000),
-                    f64::from_bits(0xbff8000000000000),
-                    f64::from_bits(0x3fd0000000000000),
-                ],
-                [
-                    f64::from_bits(0x3fb71242287d49b9),
-                    f64::from_bits(0x3feeb115778eef6c),
-                    f64::from_bits(0xbfd12b7804473342),
-                ],
-                [
-                    f64::from_bits(0xbfefcf1b6d040c87),
-                    f64::from_bits(0x3fba6ec5dd02d39d),
-                    f64::from_bits(0x3fa2077c99b4fae1),
-                ],
+                bits([0x400c000000000000, 0xbff8000000000000, 0x3fd0000000000000]),
+                bits([0x3fb71242287d49b9, 0x3feeb115778eef6c, 0xbfd12b7804473342]),
+                bits([0xbfefcf1b6d040c87, 0x3fba6ec5dd02d39d, 0x3fa2077c99b4fae1]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x40040c39cd3ab2b2),
-                    f64::from_bits(0xbff659140064db22),
-                    f64::from_bits(0x3fd240ec14ce7af7),
-                ],
-                [
-                    f64::from_bits(0x3fb71242287d49bb),
-                    f64::from_bits(0x3feeb115778eef6c),
-                    f64::from_bits(0xbfd12b7804473343),
-                ],
-                [
-                    f64::from_bits(0xbfe9f7e86b1d5593),
-                    f64::from_bits(0x3fcd0a4c865b7c9c),
-                    f64::from_bits(0x3fe13b55ffd00796),
-                ],
+                bits([0x40040c39cd3ab2b2, 0xbff659140064db22, 0x3fd240ec14ce7af7]),
+                bits([0x3fb71242287d49bb, 0x3feeb115778eef6c, 0xbfd12b7804473343]),
+                bits([0xbfe9f7e86b1d5593, 0x3fcd0a4c865b7c9c, 0x3fe13b55ffd00796]),
                 f64::from_bits(0x3eb9f3c70c996b76),
             ),
             0e0,
@@ -1242,39 +815,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-8 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x4003000000000000),
-                    f64::from_bits(0x4023800000000000),
-                    f64::from_bits(0x401f000000000000),
-                ],
-                [
-                    f64::from_bits(0x3fe8142ac4a0fd22),
-                    f64::from_bits(0x3fe06de02f49cd10),
-                    f64::from_bits(0x3fda677170920990),
-                ],
-                [
-                    f64::from_bits(0xbfda677170920990),
-                    f64::from_bits(0x3feb61caf97b006f),
-                    f64::from_bits(0xbfd3fe42ef0c9abb),
-                ],
+                bits([0x4003000000000000, 0x4023800000000000, 0x401f000000000000]),
+                bits([0x3fe8142ac4a0fd22, 0x3fe06de02f49cd10, 0x3fda677170920990]),
+                bits([0xbfda677170920990, 0x3feb61caf97b006f, 0xbfd3fe42ef0c9abb]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x3fff6623455e0b96),
-                    f64::from_bits(0x4025361caa64eee5),
-                    f64::from_bits(0x401dc01c0914e721),
-                ],
-                [
-                    f64::from_bits(0x3fe8142ac4a0fd22),
-                    f64::from_bits(0x3fe06de02f49cd10),
-                    f64::from_bits(0x3fda677170920990),
-                ],
-                [
-                    f64::from_bits(0x3fd826a326cb351e),
-                    f64::from_bits(0x3fc6b2c8d444cdf0),
-                    f64::from_bits(0xbfed15f52fb02a8f),
-                ],
+                bits([0x3fff6623455e0b96, 0x4025361caa64eee5, 0x401dc01c0914e721]),
+                bits([0x3fe8142ac4a0fd22, 0x3fe06de02f49cd10, 0x3fda677170920990]),
+                bits([0x3fd826a326cb351e, 0x3fc6b2c8d444cdf0, 0xbfed15f52fb02a8f]),
                 f64::from_bits(0x3eaeeed8904f6dfc),
             ),
             0e0,
@@ -1282,39 +831,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-9 rb~1e-5: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0xbfd0000000000000),
-                    f64::from_bits(0xc023400000000000),
-                    f64::from_bits(0x401a800000000000),
-                ],
-                [
-                    f64::from_bits(0x3fdcb03d33b5c3a7),
-                    f64::from_bits(0x3fec6c3ca2a37d19),
-                    f64::from_bits(0x3fb9c8bf8a2126ae),
-                ],
-                [
-                    f64::from_bits(0x3feb92a138cf6821),
-                    f64::from_bits(0xbfdd65940be67fcb),
-                    f64::from_bits(0x3fcba03aef6ca971),
-                ],
+                bits([0xbfd0000000000000, 0xc023400000000000, 0x401a800000000000]),
+                bits([0x3fdcb03d33b5c3a7, 0x3fec6c3ca2a37d19, 0x3fb9c8bf8a2126ae]),
+                bits([0x3feb92a138cf6821, 0xbfdd65940be67fcb, 0x3fcba03aef6ca971]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x3fe392a6ae99b391),
-                    f64::from_bits(0xc0242b2ca40b0880),
-                    f64::from_bits(0x401b5cff0e9d9e07),
-                ],
-                [
-                    f64::from_bits(0xbfdcb03d33b5c3a7),
-                    f64::from_bits(0xbfec6c3ca2a37d19),
-                    f64::from_bits(0xbfb9c8bf8a2126ae),
-                ],
-                [
-                    f64::from_bits(0xbfce7596502f99ff),
-                    f64::from_bits(0x3f846691ebe1f737),
-                    f64::from_bits(0x3fef14424d5a3e9e),
-                ],
+                bits([0x3fe392a6ae99b391, 0xc0242b2ca40b0880, 0x401b5cff0e9d9e07]),
+                bits([0xbfdcb03d33b5c3a7, 0xbfec6c3ca2a37d19, 0xbfb9c8bf8a2126ae]),
+                bits([0xbfce7596502f99ff, 0x3f846691ebe1f737, 0x3fef14424d5a3e9e]),
                 f64::from_bits(0x3ee6f0068db8bac7),
             ),
             0e0,
@@ -1322,39 +847,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // rb~1e4 |c|~1e-3: exact 1.281149837485173e4
         (
             circle_u(
-                [
-                    f64::from_bits(0x4023400000000000),
-                    f64::from_bits(0xc022800000000000),
-                    f64::from_bits(0x401f000000000000),
-                ],
-                [
-                    f64::from_bits(0x3febb0b349441823),
-                    f64::from_bits(0x3fdda6b3a187abe0),
-                    f64::from_bits(0xbfc87abdf972fc09),
-                ],
-                [
-                    f64::from_bits(0x3fdfe46ae1d4e701),
-                    f64::from_bits(0xbfe8227a65b5df3f),
-                    f64::from_bits(0x3fdb5df3eec2cd26),
-                ],
+                bits([0x4023400000000000, 0xc022800000000000, 0x401f000000000000]),
+                bits([0x3febb0b349441823, 0x3fdda6b3a187abe0, 0xbfc87abdf972fc09]),
+                bits([0x3fdfe46ae1d4e701, 0xbfe8227a65b5df3f, 0x3fdb5df3eec2cd26]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x40234077dc166cb0),
-                    f64::from_bits(0xc0227f0a6afbf531),
-                    f64::from_bits(0x401f01054452092d),
-                ],
-                [
-                    f64::from_bits(0xbfdfa4b3270e1e61),
-                    f64::from_bits(0x3fe9e8cc5045c4cc),
-                    f64::from_bits(0xbfd43c8c3f984171),
-                ],
-                [
-                    f64::from_bits(0xbfbdb87dc73ea7be),
-                    f64::from_bits(0xbfdb0270590e1af5),
-                    f64::from_bits(0xbfecc59826c124ee),
-                ],
+                bits([0x40234077dc166cb0, 0xc0227f0a6afbf531, 0x401f01054452092d]),
+                bits([0xbfdfa4b3270e1e61, 0x3fe9e8cc5045c4cc, 0xbfd43c8c3f984171]),
+                bits([0xbfbdb87dc73ea7be, 0xbfdb0270590e1af5, 0xbfecc59826c124ee]),
                 f64::from_bits(0x40c9064000000000),
             ),
             1.281149837485173e4,
@@ -1362,39 +863,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-7 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x4021c00000000000),
-                    f64::from_bits(0x4022c00000000000),
-                    f64::from_bits(0xbfec000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfe212200b99a106),
-                    f64::from_bits(0xbfb0acd778dbd278),
-                    f64::from_bits(0x3fea53aa72fc728e),
-                ],
-                [
-                    f64::from_bits(0x3fc24e721db9aca0),
-                    f64::from_bits(0xbfefaa28bed265a6),
-                    f64::from_bits(0x3f944cd9cac8d3b2),
-                ],
+                bits([0x4021c00000000000, 0x4022c00000000000, 0xbfec000000000000]),
+                bits([0xbfe212200b99a106, 0xbfb0acd778dbd278, 0x3fea53aa72fc728e]),
+                bits([0x3fc24e721db9aca0, 0xbfefaa28bed265a6, 0x3f944cd9cac8d3b2]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x40220939a1add487),
-                    f64::from_bits(0x4020c55d766a66d2),
-                    f64::from_bits(0xbfeb5d9ad8a7b0a6),
-                ],
-                [
-                    f64::from_bits(0xbfe212200b99a107),
-                    f64::from_bits(0xbfb0acd778dbd279),
-                    f64::from_bits(0x3fea53aa72fc728d),
-                ],
-                [
-                    f64::from_bits(0x3fea55fc5ffdae12),
-                    f64::from_bits(0xbfbe61dbad104b7a),
-                    f64::from_bits(0x3fe1c6be06854630),
-                ],
+                bits([0x40220939a1add487, 0x4020c55d766a66d2, 0xbfeb5d9ad8a7b0a6]),
+                bits([0xbfe212200b99a107, 0xbfb0acd778dbd279, 0x3fea53aa72fc728d]),
+                bits([0x3fea55fc5ffdae12, 0xbfbe61dbad104b7a, 0x3fe1c6be06854630]),
                 f64::from_bits(0x3eb7dae81882adc4),
             ),
             0e0,
@@ -1402,39 +879,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-10 rb~1e-6: exact 0e0
         (
             circle_u(
-                [
-                    f64::from_bits(0x4022c00000000000),
-                    f64::from_bits(0xc017000000000000),
-                    f64::from_bits(0x4024000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfef3fb3146e92a2),
-                    f64::from_bits(0x3faf3fb3146e92a0),
-                    f64::from_bits(0xbfca70f9fd98a376),
-                ],
-                [
-                    f64::from_bits(0x3fca70f9fd98a375),
-                    f64::from_bits(0x3fe12fd5b1a3370c),
-                    f64::from_bits(0xbfea2bbf944fce01),
-                ],
+                bits([0x4022c00000000000, 0xc017000000000000, 0x4024000000000000]),
+                bits([0xbfef3fb3146e92a2, 0x3faf3fb3146e92a0, 0xbfca70f9fd98a376]),
+                bits([0x3fca70f9fd98a375, 0x3fe12fd5b1a3370c, 0xbfea2bbf944fce01]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x402329c3f322c2a7),
-                    f64::from_bits(0xc014da05418839b4),
-                    f64::from_bits(0x40225d43d321bc62),
-                ],
-                [
-                    f64::from_bits(0xbfef3fb3146e92a2),
-                    f64::from_bits(0x3faf3fb3146e92a2),
-                    f64::from_bits(0xbfca70f9fd98a377),
-                ],
-                [
-                    f64::from_bits(0xbfcb01c478c0ddb9),
-                    f64::from_bits(0xbfb3f71ec83f3ba1),
-                    f64::from_bits(0x3fef2e0d9a38debb),
-                ],
+                bits([0x402329c3f322c2a7, 0xc014da05418839b4, 0x40225d43d321bc62]),
+                bits([0xbfef3fb3146e92a2, 0x3faf3fb3146e92a2, 0xbfca70f9fd98a377]),
+                bits([0xbfcb01c478c0ddb9, 0xbfb3f71ec83f3ba1, 0x3fef2e0d9a38debb]),
                 f64::from_bits(0x3eba79fec99f1ae2),
             ),
             0e0,
@@ -1442,39 +895,15 @@ fn verify_regressions() -> Vec<(Circle3, Circle3, f64)> {
         // gap 1e-11 rb~1e-6: exact 8.636168555094445e-78
         (
             circle_u(
-                [
-                    f64::from_bits(0x4011800000000000),
-                    f64::from_bits(0x4021800000000000),
-                    f64::from_bits(0x4010000000000000),
-                ],
-                [
-                    f64::from_bits(0xbfecfb2b78c13522),
-                    f64::from_bits(0xbf9fd28a16297b99),
-                    f64::from_bits(0xbfdb103201b46bf8),
-                ],
-                [
-                    f64::from_bits(0x3fd95bc609a90e7e),
-                    f64::from_bits(0x3fd2c0a3a87d0444),
-                    f64::from_bits(0xbfebd838d3644c26),
-                ],
+                bits([0x4011800000000000, 0x4021800000000000, 0x4010000000000000]),
+                bits([0xbfecfb2b78c13522, 0xbf9fd28a16297b99, 0xbfdb103201b46bf8]),
+                bits([0x3fd95bc609a90e7e, 0x3fd2c0a3a87d0444, 0xbfebd838d3644c26]),
                 f64::from_bits(0x3ff0000000000000),
             ),
             circle_u(
-                [
-                    f64::from_bits(0x401315bc3726d2ca),
-                    f64::from_bits(0x402216052e80d996),
-                    f64::from_bits(0x400909f277a4b4c0),
-                ],
-                [
-                    f64::from_bits(0xbfecfb2b78c13522),
-                    f64::from_bits(0xbf9fd28a16297b9a),
-                    f64::from_bits(0xbfdb103201b46bf9),
-                ],
-                [
-                    f64::from_bits(0x3fda1540b97aafd2),
-                    f64::from_bits(0xbfd5b177812a38b7),
-                    f64::from_bits(0xbfeb22612c0a3a88),
-                ],
+                bits([0x401315bc3726d2ca, 0x402216052e80d996, 0x400909f277a4b4c0]),
+                bits([0xbfecfb2b78c13522, 0xbf9fd28a16297b9a, 0xbfdb103201b46bf9]),
+                bits([0x3fda1540b97aafd2, 0xbfd5b177812a38b7, 0xbfeb22612c0a3a88]),
                 f64::from_bits(0x3eb96d8f4f93bc0a),
             ),
             8.636168555094445e-78,
