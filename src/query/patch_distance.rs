@@ -505,68 +505,53 @@ fn boundary_vs_patch(
     kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
 ) {
-    let mut thetas = Vec::with_capacity(48);
     let mut feet = Vec::with_capacity(8);
-    {
-        if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
-            let x = pos_og * Point3::new(0.0, 0.0, e.y);
-            let (_, c) = o.point_distance(&x);
-            emit(x, c);
-            feet.clear();
-            o.critical_feet(&x, &mut feet);
-            for f in &feet {
-                emit(x, *f);
-            }
-            return;
+    // The closest point of `o` to `x` and every critical foot.
+    let mut emit_feet = |x: Point3<f64>| {
+        let (_, c) = o.point_distance(&x);
+        emit(x, c);
+        feet.clear();
+        o.critical_feet(&x, &mut feet);
+        for f in &feet {
+            emit(x, *f);
         }
-        let circle = ParamCircle::parallel(e.x, e.y, pos_og);
-        thetas.clear();
-        let exact = match (kernel, o.core()) {
-            (
-                Kernel::Binormals,
-                Core::Circle {
-                    r_major,
-                    z,
-                    r_minor,
-                },
-            ) => {
-                circle_torus_critical(&circle, r_major, z, &mut thetas) && {
-                    // Crossings of the torus lie between consecutive critical angles.
-                    let level = r_minor * r_minor - r_major * r_major - z * z;
-                    let n_crit = thetas.len();
-                    let mut crossings = Vec::new();
-                    for s in [1.0, -1.0] {
-                        let f = core_field(o, s);
-                        level_crossings(&circle, &f, level, &thetas[..n_crit], &mut crossings);
-                    }
-                    thetas.extend(crossings);
-                    true
+    };
+    if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
+        emit_feet(pos_og * Point3::new(0.0, 0.0, e.y));
+        return;
+    }
+    let mut thetas = Vec::with_capacity(48);
+    let circle = ParamCircle::parallel(e.x, e.y, pos_og);
+    let exact = match (kernel, o.core()) {
+        (Kernel::Binormals, Core::Circle { r_major, z, .. }) => {
+            circle_torus_critical(&circle, r_major, z, &mut thetas) && {
+                // Crossings of the torus lie between consecutive critical angles.
+                let level = surface_level(o);
+                let n_crit = thetas.len();
+                let mut crossings = Vec::new();
+                for s in [1.0, -1.0] {
+                    let f = core_field(o, s);
+                    level_crossings(&circle, &f, level, &thetas[..n_crit], &mut crossings);
                 }
-            }
-            (Kernel::Binormals, Core::Line { n, c }) => {
-                let start = thetas.len();
-                let ok = line_field_critical(&circle, n, &mut thetas)
-                    && line_field_levels(&circle, n, c, &mut thetas);
-                if !ok {
-                    thetas.truncate(start);
-                }
-                ok
-            }
-            _ => false,
-        };
-        if !exact {
-            sampled_boundary_angles(&circle, o, &mut thetas);
-        }
-        for &th in &thetas {
-            let x = circle.point(th);
-            let (_, c) = o.point_distance(&x);
-            emit(x, c);
-            feet.clear();
-            o.critical_feet(&x, &mut feet);
-            for f in &feet {
-                emit(x, *f);
+                thetas.extend(crossings);
+                true
             }
         }
+        (Kernel::Binormals, Core::Line { n, c }) => {
+            let ok = line_field_critical(&circle, n, &mut thetas)
+                && line_field_levels(&circle, n, c, &mut thetas);
+            if !ok {
+                thetas.clear();
+            }
+            ok
+        }
+        _ => false,
+    };
+    if !exact {
+        sampled_boundary_angles(&circle, o, &mut thetas);
+    }
+    for &th in &thetas {
+        emit_feet(circle.point(th));
     }
 }
 
@@ -576,16 +561,21 @@ fn sampled_boundary_angles(circle: &ParamCircle, o: &Patch, thetas: &mut Vec<f64
         critical_angles(circle, &core_field(o, s), thetas);
     }
     // Crossings of the extended surface: F = level.
-    let level = match o.core() {
+    let level = surface_level(o);
+    for s in [1.0, -1.0] {
+        level_angles(circle, &core_field(o, s), level, thetas);
+    }
+}
+
+/// The value of [`core_field`] (either branch) on the extended surface of `o`.
+fn surface_level(o: &Patch) -> f64 {
+    match o.core() {
         Core::Circle {
             r_major,
             z,
             r_minor,
         } => r_minor * r_minor - r_major * r_major - z * z,
         Core::Line { c, .. } => c,
-    };
-    for s in [1.0, -1.0] {
-        level_angles(circle, &core_field(o, s), level, thetas);
     }
 }
 

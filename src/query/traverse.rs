@@ -123,9 +123,6 @@ fn outward(tree: &QueryTree, patch: &Patch, orient: f64, x: &Point3<f64>) -> Vec
     e * n.x + Vector3::z() * n.y
 }
 
-/// Patch pairs of one leaf pair (biarcs: at most two pieces each) that get pre-bounds.
-const MAX_PATCH_PAIRS: usize = 16;
-
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn leaf_pair(
     ta: &QueryTree,
@@ -151,9 +148,9 @@ pub(crate) fn leaf_pair(
     // Solid-torus lower bounds of the patch pairs (bounds.rs; disks around the pieces),
     // cheapest first. A pair whose bound is positive and not below the best distance so
     // far can neither lower the minimum nor interpenetrate, so it is skipped.
-    let mut order: crate::poly::FixedVec<(f64, u32, u32), MAX_PATCH_PAIRS> = Default::default();
-    for ia in la.patch_start..la.patch_end {
-        for ib in lb.patch_start..lb.patch_end {
+    let mut order: Vec<(f64, u32, u32)> = (la.patch_start..la.patch_end)
+        .flat_map(|ia| (lb.patch_start..lb.patch_end).map(move |ib| (ia, ib)))
+        .map(|(ia, ib)| {
             let (pa, pb) = (&ta.patches[ia as usize], &tb.patches[ib as usize]);
             let bound = node_pair_bound(
                 &Disk::around(&pa.arc),
@@ -162,62 +159,46 @@ pub(crate) fn leaf_pair(
                 BoundKind::Torus,
                 prune_at,
             );
-            if !order.try_push((bound, ia, ib)) {
-                // More pieces than expected in a leaf: no pre-bounds.
-                order.clear();
-                break;
-            }
-        }
-    }
-    order.as_mut_slice().sort_by(|x, y| x.0.total_cmp(&y.0));
+            (bound, ia, ib)
+        })
+        .collect();
+    order.sort_by(|x, y| x.0.total_cmp(&y.0));
     if order.first().is_some_and(|&(b, _, _)| b >= prune_at) {
         r.d = order[0].0;
         r.exact = false;
         return r;
     }
-    let all_pairs = || {
-        (la.patch_start..la.patch_end).flat_map(move |ia| {
-            (lb.patch_start..lb.patch_end).map(move |ib| (f64::NEG_INFINITY, ia, ib))
-        })
-    };
-    let pairs: Vec<(f64, u32, u32)> = if order.is_empty() {
-        all_pairs().collect()
-    } else {
-        order.to_vec()
-    };
-    for (bound, ia, ib) in pairs {
+    for (bound, ia, ib) in order {
         if bound > 0.0 && bound >= r.d {
             continue;
         }
         let (pa, pb) = (&ta.patches[ia as usize], &tb.patches[ib as usize]);
-        {
-            r.patch_tests += 1;
-            let slot = MemoSlot {
-                memo: &mut *memo,
-                index_a: ia,
-                index_b: ib,
-            };
-            let pd = patch_distance_memo(pa, pb, pos_ab, PatchOptions::default(), Some(slot));
-            if pd.distance < r.d {
-                r.d = pd.distance;
-                r.pa = pd.point_a;
-                r.pb = pd.point_b;
+        r.patch_tests += 1;
+        let slot = MemoSlot {
+            memo: &mut *memo,
+            index_a: ia,
+            index_b: ib,
+        };
+        let pd = patch_distance_memo(pa, pb, pos_ab, PatchOptions::default(), Some(slot));
+        if pd.distance < r.d {
+            r.d = pd.distance;
+            r.pa = pd.point_a;
+            r.pb = pd.point_b;
+        }
+        for (p, q) in &pd.interior_pairs {
+            let w = q - p;
+            let n_a = outward(ta, pa, orient_a, p);
+            let q_b = pos_ba * q;
+            let n_b = pos_ab.rotation * outward(tb, pb, orient_b, &q_b);
+            if n_a.dot(&w) >= 0.0 || n_b.dot(&w) <= 0.0 {
+                continue;
             }
-            for (p, q) in &pd.interior_pairs {
-                let w = q - p;
-                let n_a = outward(ta, pa, orient_a, p);
-                let q_b = pos_ba * q;
-                let n_b = pos_ab.rotation * outward(tb, pb, orient_b, &q_b);
-                if n_a.dot(&w) >= 0.0 || n_b.dot(&w) <= 0.0 {
-                    continue;
-                }
-                let in_a = point_in_solid(ta, q);
-                let in_b = point_in_solid(tb, &(pos_ba * p));
-                if in_a.inside && in_b.inside {
-                    let m = in_a.margin.min(in_b.margin);
-                    if r.penetration.is_none_or(|(_, _, m0)| m > m0) {
-                        r.penetration = Some((*p, *q, m));
-                    }
+            let in_a = point_in_solid(ta, q);
+            let in_b = point_in_solid(tb, &(pos_ba * p));
+            if in_a.inside && in_b.inside {
+                let m = in_a.margin.min(in_b.margin);
+                if r.penetration.is_none_or(|(_, _, m0)| m > m0) {
+                    r.penetration = Some((*p, *q, m));
                 }
             }
         }
