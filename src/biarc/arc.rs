@@ -10,6 +10,17 @@ use nalgebra::{Point2, Vector2};
 /// and changes the end tangent by at most `1e-14` rad, far below the 1e-12 G1 requirement.
 pub const STRAIGHT_SWEEP: f64 = 1e-14;
 
+/// Arcs whose radius exceeds this multiple of the profile size are revolved as their chords
+/// (see [`Arc::flattening_error`]).
+///
+/// Why: a query patch stores an arc by its centre and radius (paper 3.1). Evaluating
+/// `centre + r (cos phi, sin phi)` loses about `eps_mach * (|centre| + r)` absolutely, and the
+/// circle kernels see a major circle of radius `~r`: for the near-straight arcs a biarc fit
+/// gives on straight spans (radii of 1e11 and more on the deforming model), both put patch
+/// points 1e-5 away from the curve. Above `1e4 * size` the chord is the better-conditioned
+/// primitive, and its distance to the arc (the sagitta) is counted in the node's bound.
+pub const FLAT_RADIUS_REL: f64 = 1e4;
+
 /// Above this absolute sweep the point-to-arc distance uses polar angles around the centre;
 /// below it, the centre may be far away and half-plane tests around the end normals are used
 /// (they stay exact as `k -> 0`). Any value in (0, pi) is correct; 0.5 keeps both branches
@@ -164,6 +175,21 @@ impl Arc {
         let half = 0.25 * self.sweep;
         // r (1 - cos(2 half)) = 2 r sin^2(half) = length/|sweep| * 2 sin^2(half)
         0.5 * self.length * sinc(half) * half.sin().abs()
+    }
+
+    /// Whether the arc is revolved as its chord: a segment, or radius above `flat_radius`.
+    pub fn is_flat(&self, flat_radius: f64) -> bool {
+        self.is_segment() || self.radius() > flat_radius
+    }
+
+    /// How far the arc's chord is from the arc when the arc counts as flat for `flat_radius`
+    /// (its sagitta, the two-sided Hausdorff distance between arc and chord), else 0.
+    pub fn flattening_error(&self, flat_radius: f64) -> f64 {
+        if !self.is_segment() && self.radius() > flat_radius {
+            self.sagitta()
+        } else {
+            0.0
+        }
     }
 
     /// Euclidean distance from `p` to the arc (the closed point set).

@@ -8,7 +8,9 @@
 //!
 //! **What a node guarantees** (all in the (rho, z) half-plane, all two-sided where stated):
 //! - [`BiarcNode::eps`]: the two-sided Hausdorff distance between the node's curve piece and its
-//!   biarc is at most `eps` (bilens bound, [`super::bound`]).
+//!   biarc is at most `eps` (bilens bound, [`super::bound`]), and so is the distance to the
+//!   biarc with its near-straight arcs replaced by chords (their sagitta is added;
+//!   [`super::arc::FLAT_RADIUS_REL`]).
 //! - [`BiarcNode::bounding_disk`]: the curve piece lies inside the disk.
 //! - [`BiarcNode::chord`] with [`BiarcNode::chord_distance`]: every point of the curve piece is
 //!   within `chord_distance` of the chord segment (the paper's "line segment that best
@@ -120,10 +122,12 @@ impl BiarcNode {
     pub fn arcs(&self) -> &[Arc; 2] {
         &self.arcs
     }
-    /// Guaranteed two-sided Hausdorff bound between the node's curve piece and its biarc.
+    /// Guaranteed two-sided Hausdorff bound between the node's curve piece and its biarc, with
+    /// arcs of radius above [`BiarcTree::flat_radius`] replaced by their chords.
     pub fn eps(&self) -> f64 {
         self.eps
     }
+
     /// A disk that contains the node's curve piece (and its biarc).
     pub fn bounding_disk(&self) -> Disk {
         self.disk
@@ -257,6 +261,9 @@ struct Job {
 #[derive(Debug, Clone, Default)]
 pub struct BiarcTree {
     eps: f64,
+    /// Radius above which an arc is revolved as its chord ([`crate::biarc::arc::FLAT_RADIUS_REL`]
+    /// times the profile size).
+    flat_radius: f64,
     nodes: Vec<BiarcNode>,
     spirals: Vec<SpiralInfo>,
     upper: Vec<UpperNode>,
@@ -287,6 +294,7 @@ impl BiarcTree {
             });
         }
         self.eps = eps;
+        self.flat_radius = crate::biarc::arc::FLAT_RADIUS_REL * size;
         self.nodes.clear();
         self.spirals.clear();
         self.upper.clear();
@@ -468,14 +476,20 @@ impl BiarcTree {
             };
             let fit = fit_biarc(&curve, &job.a, &job.b)
                 .map_err(|source| TreeError::Fit { piece, source })?;
-            let leaf = fit.eps <= self.eps;
+            // Bound of the curve piece against the biarc as the query revolves it (flat arcs
+            // as chords): bilens bound plus the largest chord/arc distance.
+            let flat = fit.arcs[0]
+                .flattening_error(self.flat_radius)
+                .max(fit.arcs[1].flattening_error(self.flat_radius));
+            let bound = fit.eps + flat;
+            let leaf = bound <= self.eps;
             if !leaf && job.depth >= MAX_DEPTH {
                 return Err(TreeError::BoundNotReached {
                     piece,
-                    reached: fit.eps,
+                    reached: bound,
                 });
             }
-            let mut node = make_node(&fit, s as u32, job.depth);
+            let mut node = make_node(&fit, bound, s as u32, job.depth);
             node.t0 = job.a.t;
             node.t1 = job.b.t;
             self.max_depth = self.max_depth.max(job.depth);
@@ -550,6 +564,11 @@ impl BiarcTree {
     /// The leaf bound the tree was built with.
     pub fn eps(&self) -> f64 {
         self.eps
+    }
+
+    /// Radius above which the query revolves an arc as its chord (counted in node bounds).
+    pub fn flat_radius(&self) -> f64 {
+        self.flat_radius
     }
     /// All biarc nodes (flat; index with [`NodeId`]).
     pub fn nodes(&self) -> &[BiarcNode] {
@@ -654,19 +673,21 @@ fn placeholder() -> BiarcNode {
     }
 }
 
-/// Node data from a fit: disk around the chord midpoint and the chord-distance bound.
-fn make_node(fit: &FittedBiarc, spiral: u32, depth: u32) -> BiarcNode {
+/// Node data from a fit whose curve piece is within `eps` (>= `fit.eps`) of its arcs as
+/// revolved: disk around the chord midpoint and the chord-distance bound. The disk contains
+/// each arc, hence by convexity its chord.
+fn make_node(fit: &FittedBiarc, eps: f64, spiral: u32, depth: u32) -> BiarcNode {
     let [a0, a1] = fit.arcs;
     let (a, b) = (a0.start, a1.end);
     let m = nalgebra::center(&a, &b);
-    let radius = max_distance(&a0, m).max(max_distance(&a1, m)) + fit.eps;
+    let radius = max_distance(&a0, m).max(max_distance(&a1, m)) + eps;
     // Every point X of arc i is within sagitta_i of the chord of arc i, whose points are within
     // max(dist(start_i), dist(end_i)) of segment AB (distance to a convex set is convex).
     let j = a0.end;
-    let chord_distance = a0.sagitta().max(a1.sagitta()) + segment_distance(j, a, b) + fit.eps;
+    let chord_distance = a0.sagitta().max(a1.sagitta()) + segment_distance(j, a, b) + eps;
     let mut n = placeholder();
     n.arcs = fit.arcs;
-    n.eps = fit.eps;
+    n.eps = eps;
     n.disk = Disk { center: m, radius };
     n.chord_distance = chord_distance;
     n.spiral = spiral;

@@ -113,6 +113,20 @@ impl ProfileArc {
         }
     }
 
+    /// Bound on how far the stored piece's points, evaluated in floating point, are from the
+    /// piece it was made from: for an arc, `centre + r (cos phi, sin phi)` with `phi` from
+    /// `atan2` of `start - centre` moves a point by at most about
+    /// `4 eps_mach (|centre| + r + |start|) <= 8 eps_mach (|centre| + r)`; doubled for the
+    /// kernels' own use of the centre form. Segments store their end points exactly (0).
+    pub fn representation_error(&self) -> f64 {
+        match *self {
+            ProfileArc::Arc { center, radius, .. } => {
+                16.0 * f64::EPSILON * (center.coords.norm() + radius)
+            }
+            ProfileArc::Segment { .. } => 0.0,
+        }
+    }
+
     /// Length of the piece.
     pub fn length(&self) -> f64 {
         match *self {

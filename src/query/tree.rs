@@ -192,7 +192,12 @@ impl QueryTree {
             root: NO_CHILD,
             chain: bt
                 .leaves()
-                .flat_map(|l| l.arcs().iter().filter(|a| a.length > 0.0).map(piece_of_arc))
+                .flat_map(|l| {
+                    l.arcs()
+                        .iter()
+                        .filter(|a| a.length > 0.0)
+                        .map(|a| piece_of_arc(a, bt.flat_radius()))
+                })
                 .collect(),
             kind,
             eps: 0.0,
@@ -235,8 +240,8 @@ impl QueryTree {
         } else {
             node.patch_start = self.patches.len() as u32;
             for a in n.arcs().iter().filter(|a| a.length > 0.0) {
-                let piece = piece_of_arc(a);
-                node.eps += Patch::snap_error(&piece);
+                let piece = piece_of_arc(a, bt.flat_radius());
+                node.eps += Patch::snap_error(&piece) + piece.representation_error();
                 self.patches.push(Patch::new(piece));
             }
             node.patch_end = self.patches.len() as u32;
@@ -328,10 +333,11 @@ impl QueryTree {
     }
 }
 
-/// A biarc tree arc as a profile piece.
-pub fn piece_of_arc(a: &BiarcArc) -> ProfileArc {
+/// A biarc tree arc as a profile piece: its chord when the arc is flat for `flat_radius`
+/// (the tree's node bounds already count the sagitta), else the arc in centre form.
+pub fn piece_of_arc(a: &BiarcArc, flat_radius: f64) -> ProfileArc {
     match (a.center(), a.angle_range()) {
-        (Some(center), Some((phi_start, _))) if !a.is_segment() => ProfileArc::Arc {
+        (Some(center), Some((phi_start, _))) if !a.is_flat(flat_radius) => ProfileArc::Arc {
             center,
             radius: a.radius(),
             phi_start,
