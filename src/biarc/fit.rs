@@ -195,21 +195,28 @@ pub fn fit_biarc<C: PlanarCurve + ?Sized>(
     };
     let scale = DEGENERATE_JOINT_REL * chord * (na.max(nb) / span) * chord;
 
+    let mid = || CurveSample::at(curve, 0.5 * (s0.t + s1.t));
     let joint = if qa.abs() <= scale && qb.abs() <= scale {
-        CurveSample::at(curve, 0.5 * (s0.t + s1.t))
+        mid()
     } else {
         solve_joint(curve, s0.t, s1.t, qa, qb, &q)
     };
-    let j = joint.point;
-    let dj = joint.derivative;
-    if dj.norm() == 0.0 || !dj.norm().is_finite() {
-        return Err(BiarcError::ZeroTangent { t: joint.t });
-    }
-    let arc0 = Arc::from_point_tangent_point(a, ta, j);
-    let arc1 = Arc::from_point_tangent_point(b, -tb, j).map(|arc| arc.reversed());
-    let (Some(arc0), Some(arc1)) = (arc0, arc1) else {
-        return Err(BiarcError::NotASpiral { t0: s0.t, t1: s1.t });
+    // On very short or straight pieces `q` is rounding noise and the root may land on an end
+    // of the piece, where one arc would have no chord. Any curve point is a valid joint for
+    // the bilens bound (`super::bound`), so the mid parameter replaces it; only the G1 defect
+    // at the joint can grow, and it is bounded by the piece's tiny turning.
+    let (joint, arcs) = match biarc_through(a, ta, &joint, b, tb)? {
+        Some(arcs) => (joint, arcs),
+        None => {
+            let m = mid();
+            match biarc_through(a, ta, &m, b, tb)? {
+                Some(arcs) => (m, arcs),
+                None => return Err(BiarcError::NotASpiral { t0: s0.t, t1: s1.t }),
+            }
+        }
     };
+    let [arc0, arc1] = arcs;
+    let (j, dj) = (joint.point, joint.derivative);
     let eps = bilens_bound(a, ta, j, dj, b, tb);
     Ok(FittedBiarc {
         arcs: [arc0, arc1],
@@ -217,6 +224,25 @@ pub fn fit_biarc<C: PlanarCurve + ?Sized>(
         joint,
         eps,
     })
+}
+
+/// The two arcs of the biarc with joint `joint`: from `(a, ta)` to the joint, and backwards
+/// from `(b, -tb)` to it; `None` when the joint coincides with an end or a tangent points
+/// straight back along a chord (no minor arc).
+fn biarc_through(
+    a: Point2<f64>,
+    ta: Vector2<f64>,
+    joint: &CurveSample,
+    b: Point2<f64>,
+    tb: Vector2<f64>,
+) -> Result<Option<[Arc; 2]>, BiarcError> {
+    let dj = joint.derivative;
+    if dj.norm() == 0.0 || !dj.norm().is_finite() {
+        return Err(BiarcError::ZeroTangent { t: joint.t });
+    }
+    let arc0 = Arc::from_point_tangent_point(a, ta, joint.point);
+    let arc1 = Arc::from_point_tangent_point(b, -tb, joint.point).map(|arc| arc.reversed());
+    Ok(arc0.zip(arc1).map(|(x, y)| [x, y]))
 }
 
 /// Root of `q` on `(t0, t1)` by Brent's method with bracket end values `qa`, `qb`. Without a
