@@ -9,7 +9,7 @@
 //! other solid with a classification margin larger than the trees' eps).
 
 use super::bounds::BoundKind;
-use super::containment::point_in_solid;
+use super::overlap::{certify_overlap, nesting, Verdict};
 use super::refine::refine_on_profiles;
 use super::traverse::{traverse, Budget, TraversalOptions, TraversalStats};
 use super::tree::QueryTree;
@@ -72,13 +72,117 @@ pub fn distance(a: &Solid, b: &Solid, opts: &QueryOptions) -> Distance {
     distance_cached(a, b, opts, &mut QueryCache::default())
 }
 
+/// Rounding slack of a query relative to the configuration scale `1 + |t| + extent_a +
+/// extent_b` (`t` the relative translation, `extent` the radius of a tree's root bounding
+/// disk about the origin), for the terms that grow with the pose:
+/// * [`super::bounds::BOUND_SLACK`] (`1e-11`), the circle solver's guarantee with margin;
+/// * [`super::patch_distance::AXIS_TOLERANCE`] (`1e-12`, twice: axis direction and offset),
+///   solids treated as coaxial move by at most that fraction of the scale.
+///
+/// Sum `1.2e-11`, rounded up.
+pub const POSE_SLACK_REL: f64 = 2e-11;
+
+/// Rounding slack relative to the solids' size `extent_a + extent_b`, for the terms that grow
+/// with the pieces: [`super::patch::POINT_SNAP`] (`1e-12`, twice: parallels treated as points
+/// on the axis) and [`super::patch::ANGLE_SLACK`], [`super::patch::SEGMENT_SLACK`] (`1e-9`
+/// each: a foot accepted that far outside an arc's angle range or a segment's parameter
+/// range is off its patch by at most that fraction of the piece's radius or length).
+///
+/// Sum `2.002e-9`, rounded up.
+pub const SIZE_SLACK_REL: f64 = 3e-9;
+
+/// Largest configuration scale a query accepts: squared lengths of up to `1e300` stay
+/// finite. Beyond it [`distance`] returns the trivial certificate `[0, inf]` and
+/// [`try_distance`] an error.
+pub const MAX_SCALE: f64 = 1e150;
+
+/// Why a query cannot be answered.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum QueryError {
+    /// A pose has a NaN or infinite component.
+    #[error("pose is not finite")]
+    NonFinitePose,
+    /// The solids are too far apart or too large for double precision.
+    #[error("configuration scale {scale:e} (translation plus solid sizes) exceeds the representable range {MAX_SCALE:e}")]
+    OutOfRange { scale: f64 },
+    /// A solid has an empty tree.
+    #[error("solid has no surface (empty tree)")]
+    EmptySolid,
+}
+
+fn extent(t: &QueryTree) -> f64 {
+    t.nodes
+        .get(t.root as usize)
+        .map_or(0.0, |n| n.bound.center.coords.norm() + n.bound.radius)
+}
+
+/// The absolute rounding slack of a query between `ta` and `tb` at `pos_ab`
+/// ([`POSE_SLACK_REL`], [`SIZE_SLACK_REL`]).
+pub fn query_slack(ta: &QueryTree, tb: &QueryTree, pos_ab: &Isometry3<f64>) -> f64 {
+    let size = extent(ta) + extent(tb);
+    POSE_SLACK_REL * (1.0 + pos_ab.translation.vector.norm() + size) + SIZE_SLACK_REL * size
+}
+
+/// Checks that a query between `a` and `b` is within the representable range.
+pub fn check_query(a: &Solid, b: &Solid) -> Result<(), QueryError> {
+    let finite = |p: &Isometry3<f64>| {
+        p.translation.vector.iter().all(|x| x.is_finite())
+            && p.rotation.coords.iter().all(|x| x.is_finite())
+    };
+    if !finite(&a.pose) || !finite(&b.pose) {
+        return Err(QueryError::NonFinitePose);
+    }
+    if a.tree.nodes.is_empty() || b.tree.nodes.is_empty() {
+        return Err(QueryError::EmptySolid);
+    }
+    let t = a.relative_pose(b).translation.vector;
+    let tmax = t.amax();
+    let scale = 1.0 + tmax + extent(&a.tree) + extent(&b.tree);
+    if !(scale <= MAX_SCALE) {
+        return Err(QueryError::OutOfRange { scale });
+    }
+    Ok(())
+}
+
+/// [`distance`], with an error for poses outside the representable range.
+pub fn try_distance(a: &Solid, b: &Solid, opts: &QueryOptions) -> Result<Distance, QueryError> {
+    try_distance_cached(a, b, opts, &mut QueryCache::default())
+}
+
+/// [`distance_cached`], with an error for poses outside the representable range.
+pub fn try_distance_cached(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+    cache: &mut QueryCache,
+) -> Result<Distance, QueryError> {
+    check_query(a, b)?;
+    Ok(distance_cached(a, b, opts, cache))
+}
+
 /// [`distance`] with a warm start from `cache`, which is updated.
+///
+/// Solid semantics ([`super::overlap`]): the traversal bounds the distance between the
+/// boundary surfaces; overlap is reported only with a certificate (a point inside both true
+/// solids); when overlap can be neither certified nor excluded, `lower = 0`.
 pub fn distance_cached(
     a: &Solid,
     b: &Solid,
     opts: &QueryOptions,
     cache: &mut QueryCache,
 ) -> Distance {
+    if check_query(a, b).is_err() {
+        // Outside the representable range the only certificate is the trivial one.
+        return Distance {
+            value: f64::INFINITY,
+            lower: 0.0,
+            upper: f64::INFINITY,
+            point_a: Point3::origin(),
+            point_b: Point3::origin(),
+            overlap: false,
+            stats: TraversalStats::default(),
+        };
+    }
     let pos_ab = a.relative_pose(b);
     let topts = TraversalOptions {
         tolerance: opts.tolerance,
@@ -88,65 +192,40 @@ pub fn distance_cached(
     let s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
     cache.last_pair = s.best_pair.or(cache.last_pair);
     let eps_sum = a.tree.eps + b.tree.eps;
+    let slack = query_slack(&a.tree, &b.tree, &pos_ab);
     let world = |p: &Point3<f64>| a.pose * p;
-    let certain_overlap = |margin: f64| margin > eps_sum;
+    let surface_lower = (s.lower - slack).max(0.0);
+    let surface_upper = s.upper + slack;
 
-    // Interpenetrating approximations: overlap when deep enough, else undecided.
-    if s.surfaces_meet {
-        if let Some((p, q, m)) = s.penetration {
-            if certain_overlap(m) {
-                return overlap_result(world(&p), world(&q), s.stats);
-            }
+    let may_meet = s.surfaces_meet || surface_lower <= 0.0;
+    let verdict = if may_meet {
+        // A verified interpenetration (deepest common normal with both ends inside the
+        // other solid) first, then sampled points of either solid inside the other.
+        let pen = s
+            .penetration
+            .filter(|&(_, _, m)| m > eps_sum + slack)
+            .map(|(p, _, _)| p);
+        match pen.or_else(|| certify_overlap(&a.tree, &b.tree, &pos_ab, slack)) {
+            Some(x) => Verdict::Overlap(x),
+            None => Verdict::Undecided,
         }
-        if let Some((la, lb)) = s.best_pair {
-            if let Some(x) = deep_point(&a.tree, &b.tree, la, lb, &pos_ab, eps_sum) {
-                return overlap_result(world(&x), world(&x), s.stats);
-            }
-        }
-        let upper = s.upper;
-        return Distance {
-            value: 0.0,
-            lower: 0.0,
-            upper,
-            point_a: world(&s.point_a),
-            point_b: world(&s.point_b),
-            overlap: false,
-            stats: s.stats,
-        };
-    }
-    // Surfaces apart: nested when a point of one boundary is inside the other solid.
-    let pos_ba = pos_ab.inverse();
-    let q_in_a = point_in_solid(&a.tree, &s.point_b);
-    let p_in_b = point_in_solid(&b.tree, &(pos_ba * s.point_a));
-    if q_in_a.inside || p_in_b.inside {
-        let margin = if q_in_a.inside {
-            q_in_a.margin
-        } else {
-            p_in_b.margin
-        };
-        if certain_overlap(margin) {
-            return overlap_result(world(&s.point_a), world(&s.point_b), s.stats);
-        }
-        return Distance {
-            value: 0.0,
-            lower: 0.0,
-            upper: s.upper,
-            point_a: world(&s.point_a),
-            point_b: world(&s.point_b),
-            overlap: false,
-            stats: s.stats,
-        };
-    }
-    // Separated (up to classification margins).
-    let undecided = !certain_overlap(q_in_a.margin) || !certain_overlap(p_in_b.margin);
-    let mut lower = if undecided { 0.0 } else { s.lower };
-    let mut upper = s.upper;
+    } else {
+        nesting(&a.tree, &b.tree, &pos_ab, &s.point_a, &s.point_b, slack)
+    };
+    let lower = match verdict {
+        Verdict::Overlap(x) => return overlap_result(world(&x), world(&x), s.stats),
+        Verdict::Apart => surface_lower,
+        Verdict::Undecided => 0.0,
+    };
+    let mut upper = surface_upper;
     let (mut pa, mut pb) = (s.point_a, s.point_b);
     let mut value = s.approx;
     if opts.refine {
         if let Some(r) = refine_on_profiles(a, b, &pos_ab, &pa, &pb) {
-            // Two points on the exact boundaries: their distance is an upper bound.
-            if r.distance <= upper {
+            // Two points on the exact boundaries: their distance is an upper bound. A value
+            // below the certified lower bound would contradict it; it is never used to move
+            // the lower bound, and such a refinement is discarded.
+            if r.distance >= lower && r.distance <= upper {
                 upper = r.distance;
                 value = r.distance;
                 pa = r.point_a;
@@ -154,7 +233,6 @@ pub fn distance_cached(
             }
         }
     }
-    lower = lower.min(upper);
     Distance {
         value: value.clamp(lower, upper),
         lower,
@@ -176,51 +254,4 @@ fn overlap_result(pa: Point3<f64>, pb: Point3<f64>, stats: TraversalStats) -> Di
         overlap: true,
         stats,
     }
-}
-
-/// Revolution angles sampled by [`deep_point`].
-const DEEP_THETAS: usize = 16;
-/// Arc parameters sampled by [`deep_point`].
-const DEEP_PARAMS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
-
-/// A point of one leaf's patches (A's frame) inside the other solid with a classification
-/// margin above `eps_sum`: a certificate that the solids overlap. Used when the
-/// approximating surfaces meet at leaves `la`, `lb`.
-fn deep_point(
-    ta: &QueryTree,
-    tb: &QueryTree,
-    la: u32,
-    lb: u32,
-    pos_ab: &Isometry3<f64>,
-    eps_sum: f64,
-) -> Option<Point3<f64>> {
-    let pos_ba = pos_ab.inverse();
-    let samples = |t: &QueryTree, leaf: u32| {
-        let n = &t.nodes[leaf as usize];
-        let mut pts = Vec::new();
-        for patch in &t.patches[n.patch_start as usize..n.patch_end as usize] {
-            for s in DEEP_PARAMS {
-                let m = patch.arc.point_at(s);
-                for k in 0..DEEP_THETAS {
-                    let th = k as f64 * std::f64::consts::TAU / DEEP_THETAS as f64;
-                    pts.push(Point3::new(m.x * th.cos(), m.x * th.sin(), m.y));
-                }
-            }
-        }
-        pts
-    };
-    for x in samples(tb, lb) {
-        let xa = pos_ab * x;
-        let c = point_in_solid(ta, &xa);
-        if c.inside && c.margin > eps_sum {
-            return Some(xa);
-        }
-    }
-    for x in samples(ta, la) {
-        let c = point_in_solid(tb, &(pos_ba * x));
-        if c.inside && c.margin > eps_sum {
-            return Some(x);
-        }
-    }
-    None
 }

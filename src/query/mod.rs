@@ -17,6 +17,7 @@ pub mod containment;
 pub mod distance;
 pub mod gauss;
 pub mod line_field;
+pub mod overlap;
 pub mod patch;
 pub mod patch_distance;
 pub mod planar;
@@ -25,7 +26,10 @@ pub mod sweep;
 pub mod traverse;
 pub mod tree;
 
-pub use distance::{distance, distance_cached, Distance, QueryCache, QueryOptions};
+pub use distance::{
+    distance, distance_cached, try_distance, try_distance_cached, Distance, QueryCache, QueryError,
+    QueryOptions,
+};
 pub use patch::{Patch, ProfileArc};
 pub use patch_distance::{patch_distance, PatchDistance};
 pub use traverse::{Budget, TraversalStats};

@@ -10,7 +10,7 @@ use std::io::{BufRead, Write};
 use std::sync::Arc;
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
-use revdist::query::{distance, Budget, Distance, QueryOptions};
+use revdist::query::{try_distance, Budget, Distance, QueryOptions};
 use revdist::solid::Solid;
 use serde::{Deserialize, Serialize};
 
@@ -204,7 +204,7 @@ pub fn run(args: Args) -> CmdResult {
     let mut cache = SolidCache::default();
     let sa = cache.get(a, args.eps)?;
     let sb = cache.get(b, args.eps)?.with_pose(pose);
-    let d = distance(&sa, &sb, &opts);
+    let d = try_distance(&sa, &sb, &opts).map_err(|e| e.to_string())?;
     if args.json {
         println!("{}", serde_json::to_string(&Output::from(&d))?);
     } else {
@@ -258,7 +258,8 @@ fn run_line(
     };
     let sa = cache.get(&req.a, eps)?;
     let sb = cache.get(&req.b, eps)?.with_pose(pose);
-    Ok(Output::from(&distance(&sa, &sb, &opts)))
+    let d = try_distance(&sa, &sb, &opts).map_err(|e| e.to_string())?;
+    Ok(Output::from(&d))
 }
 
 fn run_batch(path: &str, default_eps: f64, opts: &QueryOptions) -> CmdResult {
