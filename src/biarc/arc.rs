@@ -182,6 +182,24 @@ impl Arc {
         self.is_segment() || self.radius() > flat_radius
     }
 
+    /// The arc as revolved by the query: its chord when it is flat for `flat_radius`
+    /// ([`FLAT_RADIUS_REL`]), else itself.
+    pub fn flattened(&self, flat_radius: f64) -> Arc {
+        if self.is_segment() || !self.is_flat(flat_radius) {
+            return *self;
+        }
+        let chord = self.end - self.start;
+        let length = chord.norm();
+        Arc {
+            start: self.start,
+            end: self.end,
+            start_tangent: chord / length,
+            curvature: 0.0,
+            sweep: 0.0,
+            length,
+        }
+    }
+
     /// How far the arc's chord is from the arc when the arc counts as flat for `flat_radius`
     /// (its sagitta, the two-sided Hausdorff distance between arc and chord), else 0.
     pub fn flattening_error(&self, flat_radius: f64) -> f64 {

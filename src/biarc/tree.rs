@@ -122,6 +122,12 @@ impl BiarcNode {
     pub fn arcs(&self) -> &[Arc; 2] {
         &self.arcs
     }
+    /// The biarc as the query revolves it: arcs of radius above `flat_radius` (the tree's
+    /// [`BiarcTree::flat_radius`]) replaced by their chords.
+    pub fn revolved_arcs(&self, flat_radius: f64) -> [Arc; 2] {
+        self.arcs.map(|a| a.flattened(flat_radius))
+    }
+
     /// Guaranteed two-sided Hausdorff bound between the node's curve piece and its biarc, with
     /// arcs of radius above [`BiarcTree::flat_radius`] replaced by their chords.
     pub fn eps(&self) -> f64 {

@@ -29,7 +29,15 @@ pub(crate) fn check_tree_with(profile: &Profile, tree: &BiarcTree, samples: usiz
         let s = tree.spirals()[node.spiral()];
         let piece = &profile.pieces()[s.piece];
         let (t0, t1) = node.param_range();
-        let h = sampled_hausdorff(piece, t0, t1, node.arcs(), samples);
+        // The bound covers the biarc as revolved (near-straight arcs as chords) and the biarc.
+        let revolved = node.revolved_arcs(tree.flat_radius());
+        let h = sampled_hausdorff(piece, t0, t1, &revolved, samples);
+        let h_biarc = sampled_hausdorff(piece, t0, t1, node.arcs(), samples);
+        assert!(
+            h_biarc <= node.eps(),
+            "node {t0}..{t1}: biarc sampled {h_biarc} > eps {}",
+            node.eps()
+        );
         assert!(
             h <= node.eps(),
             "node {t0}..{t1}: sampled {h} > eps {}",

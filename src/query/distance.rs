@@ -84,12 +84,12 @@ pub const POSE_SLACK_REL: f64 = 2e-11;
 
 /// Rounding slack relative to the solids' size `extent_a + extent_b`, for the terms that grow
 /// with the pieces: [`super::patch::POINT_SNAP`] (`1e-12`, twice: parallels treated as points
-/// on the axis) and [`super::patch::ANGLE_SLACK`], [`super::patch::SEGMENT_SLACK`] (`1e-9`
+/// on the axis) and [`super::patch::ANGLE_SLACK`], [`super::patch::SEGMENT_SLACK`] (`1e-12`
 /// each: a foot accepted that far outside an arc's angle range or a segment's parameter
 /// range is off its patch by at most that fraction of the piece's radius or length).
 ///
-/// Sum `2.002e-9`, rounded up.
-pub const SIZE_SLACK_REL: f64 = 3e-9;
+/// Sum `4e-12`, rounded up.
+pub const SIZE_SLACK_REL: f64 = 5e-12;
 
 /// Largest configuration scale a query accepts: squared lengths of up to `1e300` stay
 /// finite. Beyond it [`distance`] returns the trivial certificate `[0, inf]` and

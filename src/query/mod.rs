@@ -13,6 +13,7 @@
 
 pub mod binormal_kernel;
 pub mod bounds;
+pub mod certify;
 pub mod containment;
 pub mod distance;
 pub mod gauss;

@@ -13,11 +13,15 @@ use std::f64::consts::TAU;
 
 /// Angular slack (radians) for deciding that an arc angle lies in an arc's range. Contacts
 /// exactly on a shared patch boundary must be kept by both neighbours (inclusive test); the
-/// value is far above round-off of `atan2` (1e-15) and far below any arc sweep of a tree leaf.
-pub const ANGLE_SLACK: f64 = 1e-9;
+/// value is above round-off of `atan2` (1e-15) and far below any arc sweep of a tree leaf.
+/// A foot accepted up to this far outside the range is off its patch by at most
+/// `ANGLE_SLACK * radius`, which the query adds to its interval
+/// ([`super::distance::SIZE_SLACK_REL`]); a foot rejected near a range end loses nothing,
+/// since the boundary parallels' candidates cover minima at the patch boundary.
+pub const ANGLE_SLACK: f64 = 1e-12;
 
 /// Relative slack on a segment parameter in [0, 1] (same role as [`ANGLE_SLACK`]).
-pub const SEGMENT_SLACK: f64 = 1e-9;
+pub const SEGMENT_SLACK: f64 = 1e-12;
 
 /// A piece of a profile curve in the (rho, z) half-plane: a circular arc or a segment.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -54,6 +54,10 @@ pub struct PatchDistance {
     pub point_b: Point3<f64>,
     /// Interior common normals (point on A, point on B), for penetration tests.
     pub interior_pairs: Vec<(Point3<f64>, Point3<f64>)>,
+    /// Some candidates came from a sampled scan ([`sweep`]): `distance` is then only an
+    /// upper bound of the patch distance (two real surface points), and a lower bound must
+    /// come from elsewhere ([`super::certify`]).
+    pub sampled: bool,
 }
 
 struct Best {
@@ -123,6 +127,9 @@ pub fn patch_distance_with(
 /// Closest pair `(point on a parallel, point on a patch)`, in the patch's frame.
 type ClosestPair = (Point3<f64>, Point3<f64>);
 
+/// The closest pair a candidate generator found, and whether it sampled.
+type Found = (Option<ClosestPair>, bool);
+
 /// Results of the boundary cases (b) and (c) shared by the patch pairs of one query (one
 /// pose): a boundary parallel meets the same patch, and the same parallel of the other
 /// solid, in every leaf pair that contains both, and neighbouring pieces share their end
@@ -131,9 +138,9 @@ type ClosestPair = (Point3<f64>, Point3<f64>);
 #[derive(Debug, Default)]
 pub struct BoundaryMemo {
     /// (parallel of B?, rho bits, z bits, index of the other patch) -> closest pair.
-    circle_patch: HashMap<(bool, u64, u64, u32), Option<ClosestPair>>,
+    circle_patch: HashMap<(bool, u64, u64, u32), Found>,
     /// (A's parallel bits, B's parallel bits) -> closest pair (A's frame).
-    circle_circle: HashMap<(u64, u64, u64, u64), Option<ClosestPair>>,
+    circle_circle: HashMap<(u64, u64, u64, u64), Found>,
 }
 
 /// A memo with the indices of the two patches in their trees.
@@ -161,6 +168,7 @@ pub fn patch_distance_memo(
         q: Point3::origin(),
     };
     let mut pairs = Vec::new();
+    let mut sampled = opts.kernel == Kernel::Sweep;
     if !opts.skip_interior {
         let via_binormals = opts.kernel == Kernel::Binormals
             && matches!(
@@ -175,13 +183,13 @@ pub fn patch_distance_memo(
         match (a.arc, b.arc) {
             _ if via_binormals => {}
             (ProfileArc::Arc { .. }, _) => {
-                interior_via_core(a, b, pos_ab, opts.kernel, &mut |p, q| {
+                sampled |= interior_via_core(a, b, pos_ab, opts.kernel, &mut |p, q| {
                     best.consider(p, q);
                     pairs.push((p, q));
                 });
             }
             (_, ProfileArc::Arc { .. }) => {
-                interior_via_core(b, a, &pos_ba, opts.kernel, &mut |q, p| {
+                sampled |= interior_via_core(b, a, &pos_ba, opts.kernel, &mut |q, p| {
                     let (p, q) = (pos_ab * p, pos_ab * q);
                     best.consider(p, q);
                     pairs.push((p, q));
@@ -219,7 +227,8 @@ pub fn patch_distance_memo(
             }
             None => compute(),
         };
-        match found {
+        sampled |= found.1;
+        match found.0 {
             Some((x, c)) if of_b => best.consider(c, x),
             Some((x, c)) => best.consider(pos_ab * x, pos_ab * c),
             None => {}
@@ -239,7 +248,8 @@ pub fn patch_distance_memo(
                 }
                 None => compute(),
             };
-            if let Some((p, q)) = found {
+            sampled |= found.1;
+            if let Some((p, q)) = found.0 {
                 best.consider(p, q);
             }
         }
@@ -270,19 +280,20 @@ pub fn patch_distance_memo(
         point_a: best.p,
         point_b: best.q,
         interior_pairs: pairs,
+        sampled,
     }
 }
 
 /// The closest of the pairs a candidate generator emits.
-fn closest(gen: impl FnOnce(&mut dyn FnMut(Point3<f64>, Point3<f64>))) -> Option<ClosestPair> {
+fn closest(gen: impl FnOnce(&mut dyn FnMut(Point3<f64>, Point3<f64>)) -> bool) -> Found {
     let mut best: Option<(f64, ClosestPair)> = None;
-    gen(&mut |x, c| {
+    let sampled = gen(&mut |x, c| {
         let d = (x - c).norm();
         if best.is_none_or(|(bd, _)| d < bd) {
             best = Some((d, (x, c)));
         }
     });
-    best.map(|(_, pair)| pair)
+    (best.map(|(_, pair)| pair), sampled)
 }
 
 /// Meridians always scanned for crossings (an intersection loop that winds around a
@@ -388,6 +399,7 @@ fn coaxial(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> Option<PatchDistanc
         point_a: lift(pa, &e),
         point_b: lift(pb, &e),
         interior_pairs: Vec::new(),
+        sampled: false,
     })
 }
 
@@ -410,17 +422,19 @@ fn core_field(patch: &Patch, s: f64) -> RadialField {
 }
 
 /// Interior common normals with `t` a toroidal patch (frame T) and `o` any patch placed in
-/// T's frame by `pos_to`. Emits (point on t, point on o) in T's frame.
+/// T's frame by `pos_to`. Emits (point on t, point on o) in T's frame; returns whether the
+/// critical angles came from the sampled scan.
 fn interior_via_core(
     t: &Patch,
     o: &Patch,
     pos_to: &Isometry3<f64>,
     kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
-) {
+) -> bool {
     let Core::Circle { r_major, z, .. } = t.core() else {
-        return;
+        return false;
     };
+    let mut sampled = false;
     let pos_ot = pos_to.inverse();
     // Major circle of t in o's frame.
     let major = ParamCircle::parallel(r_major, z, &pos_ot);
@@ -435,6 +449,7 @@ fn interior_via_core(
             _ => false,
         };
         if !exact {
+            sampled = true;
             for s in [1.0, -1.0] {
                 critical_angles(&major, &core_field(o, s), &mut thetas);
             }
@@ -448,7 +463,7 @@ fn interior_via_core(
         feet.clear();
         o.critical_feet(&core_o, &mut feet);
         if r_major == 0.0 {
-            sphere_centre_feet(o, &core_o, &mut feet);
+            sphere_centre_feet(t, pos_to, &core_o, &mut feet);
         }
         for f in &feet {
             let q = pos_to * f;
@@ -467,21 +482,70 @@ fn interior_via_core(
             }
         }
     }
+    sampled
 }
 
-/// Feet on `o` from a point `x` (o's frame) on o's axis, for a sphere-like core point:
-/// the continuum of meridian planes is sampled so the other patch's range test can pass.
-fn sphere_centre_feet(o: &Patch, x: &Point3<f64>, feet: &mut Vec<Point3<f64>>) {
+/// Feet on `o` seen from the centre of the sphere patch `t` when that centre (`x`, o's
+/// frame) lies on o's axis (`pos_to` places O in T's frame).
+///
+/// **Exactness.** Each critical foot `f` of `o` from a point on its axis lies on a parallel
+/// of `o`, all of whose points are feet at the same distance `|f - x|`; the common normal
+/// through a foot is the line from the sphere centre, and `t` keeps it when the direction's
+/// latitude in T's frame lies in t's arc range (`sin phi` in `[s_lo, s_hi]`). Along the
+/// parallel the direction's z component in T's frame is `(A + K cos(psi - psi0)) / |w|`,
+/// so for each sign of the direction the kept feet form an interval of `psi`, found in
+/// closed form; the foot at its middle is emitted (every kept foot gives the same
+/// distance). No meridian is sampled.
+fn sphere_centre_feet(
+    t: &Patch,
+    pos_to: &Isometry3<f64>,
+    x: &Point3<f64>,
+    feet: &mut Vec<Point3<f64>>,
+) {
     if x.x.hypot(x.y) > 1e-13 * (1.0 + x.coords.norm()) {
         return;
     }
+    let ProfileArc::Arc {
+        phi_start, sweep, ..
+    } = t.arc
+    else {
+        return;
+    };
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    let latitude = |phi: f64| phi.sin().atan2(phi.cos()).clamp(-half_pi, half_pi).sin();
+    let (l0, l1) = (latitude(phi_start), latitude(phi_start + sweep));
+    let (s_lo, s_hi) = (l0.min(l1), l0.max(l1));
+    let core_t = pos_to * x;
+    let (ex, ey) = (
+        pos_to.rotation * Vector3::x(),
+        pos_to.rotation * Vector3::y(),
+    );
     let base: Vec<Point3<f64>> = feet.clone();
-    for k in 1..16 {
-        let th = k as f64 * std::f64::consts::TAU / 16.0;
-        let rot = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), th);
-        feet.extend(base.iter().map(|p| rot * p));
+    for f in &base {
+        let rho_f = f.x.hypot(f.y);
+        let alpha = f.y.atan2(f.x);
+        let w_len = (f - x).norm();
+        let a = (pos_to * Point3::new(0.0, 0.0, f.z)).z - core_t.z;
+        let (p, q) = (ex.z * rho_f, ey.z * rho_f);
+        let k = p.hypot(q);
+        let psi0 = q.atan2(p);
+        for sgn in [1.0, -1.0] {
+            // Direction sgn * w / |w| has z in [s_lo, s_hi]  <=>  w_z in [lo, hi].
+            let (b0, b1) = (sgn * s_lo * w_len, sgn * s_hi * w_len);
+            let (lo, hi) = (b0.min(b1).max(a - k), b0.max(b1).min(a + k));
+            if lo > hi {
+                continue;
+            }
+            let target = 0.5 * (lo + hi);
+            let psi = if k > 0.0 {
+                psi0 + ((target - a) / k).clamp(-1.0, 1.0).acos()
+            } else {
+                psi0
+            };
+            let rot = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), psi - alpha);
+            feet.push(rot * f);
+        }
     }
-    let _ = o;
 }
 
 /// Unit surface normal (from the core side) of patch `o` at its point `f` (o's frame).
@@ -504,7 +568,7 @@ fn boundary_vs_patch(
     pos_og: &Isometry3<f64>,
     kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
-) {
+) -> bool {
     let mut feet = Vec::with_capacity(8);
     // The closest point of `o` to `x` and every critical foot.
     let mut emit_feet = |x: Point3<f64>| {
@@ -518,11 +582,16 @@ fn boundary_vs_patch(
     };
     if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
         emit_feet(pos_og * Point3::new(0.0, 0.0, e.y));
-        return;
+        return false;
     }
     let mut thetas = Vec::with_capacity(48);
     let circle = ParamCircle::parallel(e.x, e.y, pos_og);
     let exact = match (kernel, o.core()) {
+        (Kernel::Binormals, Core::Circle { .. }) if coaxial_circle(&circle) => {
+            // Coaxial with the torus: the distance to the patch is the same at every angle.
+            thetas.push(0.0);
+            true
+        }
         (Kernel::Binormals, Core::Circle { r_major, z, .. }) => {
             circle_torus_critical(&circle, r_major, z, &mut thetas) && {
                 // Crossings of the torus lie between consecutive critical angles.
@@ -542,8 +611,16 @@ fn boundary_vs_patch(
                 && line_field_levels(&circle, n, c, &mut thetas);
             if !ok {
                 thetas.clear();
+                // The line field is constant along the circle: a flat annulus and a circle
+                // in a parallel plane (closed form), else a circle coaxial with the cone or
+                // cylinder, whose distance to the patch is the same at every angle.
+                if n.x == 0.0 {
+                    flat_annulus_angle(&circle, o, &mut thetas);
+                } else {
+                    thetas.push(0.0);
+                }
             }
-            ok
+            true
         }
         _ => false,
     };
@@ -553,6 +630,53 @@ fn boundary_vs_patch(
     for &th in &thetas {
         emit_feet(circle.point(th));
     }
+    !exact
+}
+
+/// Whether the circle (frame O) is coaxial with O's z axis, to [`AXIS_TOLERANCE`].
+fn coaxial_circle(c: &ParamCircle) -> bool {
+    let n = c.u.cross(&c.v);
+    let scale = 1.0 + c.o.coords.norm() + c.radius();
+    c.o.x.hypot(c.o.y) <= AXIS_TOLERANCE * scale && n.x.hypot(n.y) <= AXIS_TOLERANCE * n.norm()
+}
+
+/// The closest angle of a circle lying in a plane `z = const` (frame O) to the flat annulus
+/// `o` (a horizontal segment revolved: `z = z_o`, `rho` in `[r0, r1]`).
+///
+/// **Exactness.** The squared distance from a point to the annulus is
+/// `(z - z_o)^2 + dist(rho, [r0, r1])^2`; along the circle `z` is constant and
+/// `rho(theta)^2 = d^2 + r^2 + 2 d r cos(theta - theta0)` (`d` the centre's distance to the
+/// axis, `r` the radius) sweeps `[|d - r|, d + r]` continuously. The minimum is at the
+/// `rho` of that interval nearest to `[r0, r1]` (the middle of their overlap when they
+/// overlap), whose angle is solved in closed form.
+fn flat_annulus_angle(circle: &ParamCircle, o: &Patch, out: &mut Vec<f64>) {
+    let (a, b) = (o.arc.start(), o.arc.end());
+    let (r0, r1) = (a.x.min(b.x), a.x.max(b.x));
+    let (ox, oy) = (circle.o.x, circle.o.y);
+    let (pu, pv) = (
+        ox * circle.u.x + oy * circle.u.y,
+        ox * circle.v.x + oy * circle.v.y,
+    );
+    let amp = pu.hypot(pv); // d r
+    let base = ox * ox + oy * oy + circle.radius() * circle.radius(); // d^2 + r^2
+    if amp == 0.0 {
+        out.push(0.0);
+        return;
+    }
+    let (lo, hi) = (
+        (base - 2.0 * amp).max(0.0).sqrt(),
+        (base + 2.0 * amp).sqrt(),
+    );
+    let target = if hi < r0 {
+        hi
+    } else if lo > r1 {
+        lo
+    } else {
+        0.5 * (lo.max(r0) + hi.min(r1))
+    };
+    let theta0 = pv.atan2(pu);
+    let c = ((target * target - base) / (2.0 * amp)).clamp(-1.0, 1.0);
+    out.push(theta0 + c.acos());
 }
 
 /// Critical and crossing angles of the parallel `circle` against `o` by the sampled scan.
@@ -586,7 +710,7 @@ fn parallel_pair(
     pos_ab: &Isometry3<f64>,
     kernel: Kernel,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
-) {
+) -> bool {
     let closest_on_a = |x: &Point3<f64>| {
         let rho = x.x.hypot(x.y);
         let e = if rho > 0.0 {
@@ -599,7 +723,7 @@ fn parallel_pair(
     if eb.x.abs() <= POINT_SNAP * (1.0 + eb.y.abs()) {
         let x = pos_ab * Point3::new(0.0, 0.0, eb.y);
         emit(closest_on_a(&x), x);
-        return;
+        return false;
     }
     let circle = ParamCircle::parallel(eb.x, eb.y, pos_ab);
     if ea.x.abs() <= POINT_SNAP * (1.0 + ea.y.abs()) {
@@ -614,12 +738,12 @@ fn parallel_pair(
             Vector3::x()
         };
         emit(pa, pos_ab * lift(eb, &e));
-        return;
+        return false;
     }
     if kernel == Kernel::Binormals {
         let (p, q) = parallel_pair_closest((ea.x, ea.y), (eb.x, eb.y), pos_ab);
         emit(p, q);
-        return;
+        return false;
     }
     let field = RadialField {
         a: -2.0 * ea.x,
@@ -633,6 +757,7 @@ fn parallel_pair(
         let x = circle.point(th);
         emit(closest_on_a(&x), x);
     }
+    true
 }
 
 /// Interior common normals of two straight pieces (cones, cylinders, annuli) via their

@@ -11,6 +11,7 @@
 //! resolved pair means nothing can be refined further.
 
 use super::bounds::{node_pair_bound, BoundKind};
+use super::certify::{patch_lower_bound, CERTIFY_MAX_PAIRS};
 use super::containment::point_in_solid;
 use super::patch::Patch;
 use super::patch_distance::{patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions};
@@ -102,8 +103,13 @@ impl Ord for Entry {
 /// patch pair's solid-torus bound already reaches the caller's pruning level, only that
 /// lower bound (`exact == false`).
 pub(crate) struct LeafResult {
-    /// The patch distance (`exact`), else a lower bound of it.
+    /// The patch distance (`exact`), else a lower bound of it. When a patch pair needed
+    /// the sampled scan, `d` is a distance between two real surface points (an upper bound).
     pub d: f64,
+    /// A rigorous lower bound of the leaves' patch distance: `d` itself where every patch
+    /// pair was computed exactly, a subdivision bound ([`super::certify`]) where a pair was
+    /// sampled, the solid-torus bound for pairs skipped.
+    pub lower: f64,
     pub exact: bool,
     pub pa: Point3<f64>,
     pub pb: Point3<f64>,
@@ -139,6 +145,7 @@ pub(crate) fn leaf_pair(
     let (la, lb) = (&ta.nodes[na as usize], &tb.nodes[nb as usize]);
     let mut r = LeafResult {
         d: f64::INFINITY,
+        lower: f64::INFINITY,
         exact: true,
         pa: Point3::origin(),
         pb: Point3::origin(),
@@ -165,11 +172,16 @@ pub(crate) fn leaf_pair(
     order.sort_by(|x, y| x.0.total_cmp(&y.0));
     if order.first().is_some_and(|&(b, _, _)| b >= prune_at) {
         r.d = order[0].0;
+        r.lower = r.d;
         r.exact = false;
         return r;
     }
+    // Subdivision precision for sampled patch pairs: the leaves' eps (a lower bound that
+    // close costs no accuracy the leaves have), but not below rounding of the pose.
+    let precision = (la.eps + lb.eps).max(1e-9 * (1.0 + pos_ab.translation.vector.norm()));
     for (bound, ia, ib) in order {
         if bound > 0.0 && bound >= r.d {
+            r.lower = r.lower.min(bound);
             continue;
         }
         let (pa, pb) = (&ta.patches[ia as usize], &tb.patches[ib as usize]);
@@ -180,6 +192,19 @@ pub(crate) fn leaf_pair(
             index_b: ib,
         };
         let pd = patch_distance_memo(pa, pb, pos_ab, PatchOptions::default(), Some(slot));
+        let pair_lower = if pd.sampled {
+            patch_lower_bound(
+                &pa.arc,
+                &pb.arc,
+                pos_ab,
+                pd.distance,
+                precision,
+                CERTIFY_MAX_PAIRS,
+            )
+        } else {
+            pd.distance
+        };
+        r.lower = r.lower.min(pair_lower);
         if pd.distance < r.d {
             r.d = pd.distance;
             r.pa = pd.point_a;
@@ -259,7 +284,7 @@ pub fn traverse(
             );
             stats.patch_tests += r.patch_tests;
             if !r.exact {
-                return key.max(r.d - e);
+                return key.max(r.lower - e);
             }
             if r.d + e < out.upper {
                 out.upper = r.d + e;
@@ -280,7 +305,7 @@ pub fn traverse(
                 out.surfaces_meet = true;
                 f64::NEG_INFINITY
             } else {
-                key.max(r.d - e)
+                key.max(r.lower - e)
             }
         };
     // Warm start: evaluate the last best leaf pair first for a tight upper bound; its

@@ -336,8 +336,9 @@ impl QueryTree {
 /// A biarc tree arc as a profile piece: its chord when the arc is flat for `flat_radius`
 /// (the tree's node bounds already count the sagitta), else the arc in centre form.
 pub fn piece_of_arc(a: &BiarcArc, flat_radius: f64) -> ProfileArc {
+    let a = a.flattened(flat_radius);
     match (a.center(), a.angle_range()) {
-        (Some(center), Some((phi_start, _))) if !a.is_flat(flat_radius) => ProfileArc::Arc {
+        (Some(center), Some((phi_start, _))) if !a.is_segment() => ProfileArc::Arc {
             center,
             radius: a.radius(),
             phi_start,
