@@ -19,6 +19,10 @@ use std::f64::consts::TAU;
 /// far below any feature of a profile).
 const AXIS_NUDGE: f64 = 1e-10;
 
+/// Sweep (radians) above which an arc's bulge side is read from its midpoint (sagitta at
+/// least `r (1 - cos 0.5) ~ 0.12 r`, far above rounding); below it, from its centre.
+const MID_SIDE_SWEEP: f64 = 1.0;
+
 /// Classification of a point against a profile region.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Inside {
@@ -43,8 +47,15 @@ fn swept_angle(piece: &ProfileArc, x: Point2<f64>) -> f64 {
             // segment between them: inside the circle and on the arc's side of the chord.
             let inside_circle = (x - center).norm() < radius;
             let (s, e) = (piece.start(), piece.end());
-            let mid = piece.point_at(0.5);
-            let side_mid = cross2(e - s, mid - s);
+            // Side of the chord the arc bulges to: the midpoint's side for arcs that turn
+            // enough for the midpoint to stand clear of the chord; for flatter arcs (whose
+            // sagitta may be below rounding) the side opposite the centre, which is then far
+            // from the chord (a minor arc bulges away from its centre).
+            let side_mid = if sweep.abs() >= MID_SIDE_SWEEP {
+                cross2(e - s, piece.point_at(0.5) - s)
+            } else {
+                -cross2(e - s, center - s)
+            };
             let side_x = cross2(e - s, x - s);
             let in_segment = inside_circle && side_mid * side_x > 0.0;
             let full = sweep.abs() >= TAU - 1e-12;

@@ -270,11 +270,18 @@ fn side_range(own: &ProfileArc, other: &ProfileArc, axis_other: &Vector3<f64>) -
             return Side::Full;
         }
     }
+    if hi - lo >= PI {
+        // A range of half a turn or more (full circles, after widening) spans every
+        // latitude of one meridian half: nothing to restrict, and it could have four
+        // constant-sign parts.
+        return Side::Full;
+    }
     let (s0, s1) = sin_range(olo, ohi);
     let targets = [(s0, s1), (-s1, -s0)];
     let k = axis_other.x.hypot(axis_other.y);
     let a_z = axis_other.z;
     let alpha = axis_other.y.atan2(axis_other.x);
+    // At most 2 parts (range below pi) x 2 targets x 2 arcs.
     let mut arcs: [(f64, f64); 12] = [(0.0, 0.0); 12];
     let mut n = 0;
     for (l0, l1, shift) in latitude_parts(lo, hi) {
