@@ -205,7 +205,7 @@ pub fn distance_cached(
             .penetration
             .filter(|&(_, _, m)| m > eps_sum + slack)
             .map(|(p, _, _)| p);
-        match pen.or_else(|| certify_overlap(&a.tree, &b.tree, &pos_ab, slack)) {
+        match pen.or_else(|| certify_overlap(&a.tree, &b.tree, &pos_ab, s.best_pair, slack)) {
             Some(x) => Verdict::Overlap(x),
             None => Verdict::Undecided,
         }

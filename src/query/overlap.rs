@@ -49,12 +49,43 @@ pub enum Verdict {
     Undecided,
 }
 
-/// Meridian points of the approximating surface: each patch's ends and midpoint.
+/// Meridian points of the approximating surface: each patch's ends (the poles of the solid
+/// among them, where coaxial contacts are deepest) and midpoint.
 fn surface_meridian_points(tree: &QueryTree) -> Vec<Point2<f64>> {
     tree.patches
         .iter()
-        .flat_map(|p| [p.arc.point_at(0.0), p.arc.point_at(0.5)])
+        .flat_map(|p| {
+            [
+                p.arc.point_at(0.0),
+                p.arc.point_at(0.5),
+                p.arc.point_at(1.0),
+            ]
+        })
         .collect()
+}
+
+/// Parameters at which the patches of the leaf where the surfaces met are sampled.
+const FOCUS_PARAMS: usize = 9;
+
+/// Revolution angles for the focus leaf's samples.
+const FOCUS_THETAS: usize = 48;
+
+/// Dense samples (tree frame) of one leaf's patches: where the traversal found the
+/// approximating surfaces meeting, the penetration, if any, is nearby.
+fn leaf_samples(tree: &QueryTree, leaf: u32) -> Vec<Point3<f64>> {
+    let Some(n) = tree.nodes.get(leaf as usize) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for p in &tree.patches[n.patch_start as usize..n.patch_end as usize] {
+        for i in 0..FOCUS_PARAMS {
+            let m = p.arc.point_at(i as f64 / (FOCUS_PARAMS - 1) as f64);
+            for k in 0..FOCUS_THETAS {
+                out.push(lift_at(m, k as f64 * TAU / FOCUS_THETAS as f64));
+            }
+        }
+    }
+    out
 }
 
 /// Interior meridian points with their clearance from the approximating chain, best first.
@@ -98,15 +129,25 @@ fn overlap_point(
     outer: &QueryTree,
     inner: &QueryTree,
     pos: &Isometry3<f64>,
+    focus: Option<u32>,
     e_outer: f64,
     e_inner: f64,
     slack: f64,
 ) -> Option<Point3<f64>> {
+    let deep = |x: Point3<f64>| {
+        let c = point_in_solid(outer, &x);
+        c.inside && c.margin > e_outer + e_inner + slack
+    };
+    let focused = focus
+        .map(|leaf| leaf_samples(inner, leaf))
+        .unwrap_or_default();
+    if let Some(x) = focused.into_iter().map(|x| pos * x).find(|x| deep(*x)) {
+        return Some(x);
+    }
     for m in surface_meridian_points(inner) {
         for th in thetas() {
             let x = pos * lift_at(m, th);
-            let c = point_in_solid(outer, &x);
-            if c.inside && c.margin > e_outer + e_inner + slack {
+            if deep(x) {
                 return Some(x);
             }
         }
@@ -127,16 +168,19 @@ fn overlap_point(
 }
 
 /// Certified overlap of A and B (`pos_ab` places B in A's frame); the point is in A's frame.
+/// `focus` is the leaf pair where the traversal found the surfaces meeting, sampled densely.
 pub fn certify_overlap(
     ta: &QueryTree,
     tb: &QueryTree,
     pos_ab: &Isometry3<f64>,
+    focus: Option<(u32, u32)>,
     slack: f64,
 ) -> Option<Point3<f64>> {
     let (ea, eb) = (ta.eps, tb.eps);
-    overlap_point(ta, tb, pos_ab, ea, eb, slack).or_else(|| {
+    let (fa, fb) = (focus.map(|f| f.0), focus.map(|f| f.1));
+    overlap_point(ta, tb, pos_ab, fb, ea, eb, slack).or_else(|| {
         let pos_ba = pos_ab.inverse();
-        overlap_point(tb, ta, &pos_ba, eb, ea, slack).map(|x| pos_ab * x)
+        overlap_point(tb, ta, &pos_ba, fa, eb, ea, slack).map(|x| pos_ab * x)
     })
 }
 

@@ -445,6 +445,13 @@ fn interior_via_core(
         let exact = match (kernel, o.core()) {
             (Kernel::Binormals, Core::Line { n, .. }) => {
                 line_field_critical(&major, n, &mut thetas)
+                    || (n.x == 0.0 && {
+                        // A horizontal major circle over a flat annulus: every angle is
+                        // critical, and the common normals are vertical; the one whose
+                        // foot is in the annulus (if any) comes from the closed form.
+                        flat_annulus_angle(&major, o, &mut thetas);
+                        true
+                    })
             }
             _ => false,
         };

@@ -43,6 +43,9 @@ pub struct TraversalStats {
     pub bound_tests: usize,
     /// Largest queue length.
     pub max_queue: usize,
+    /// Patch pairs whose kernel needed a sampled scan, bounded below by subdivision
+    /// ([`super::certify`]).
+    pub subdivided_pairs: usize,
     /// The budget stopped the traversal before the tolerance was reached.
     pub budget_exhausted: bool,
 }
@@ -115,6 +118,7 @@ pub(crate) struct LeafResult {
     pub pb: Point3<f64>,
     pub penetration: Option<(Point3<f64>, Point3<f64>, f64)>,
     pub patch_tests: usize,
+    pub subdivided_pairs: usize,
 }
 
 /// Outward unit normal (3-D, tree frame) of a patch at its surface point `x`.
@@ -151,6 +155,7 @@ pub(crate) fn leaf_pair(
         pb: Point3::origin(),
         penetration: None,
         patch_tests: 0,
+        subdivided_pairs: 0,
     };
     // Solid-torus lower bounds of the patch pairs (bounds.rs; disks around the pieces),
     // cheapest first. A pair whose bound is positive and not below the best distance so
@@ -193,6 +198,7 @@ pub(crate) fn leaf_pair(
         };
         let pd = patch_distance_memo(pa, pb, pos_ab, PatchOptions::default(), Some(slot));
         let pair_lower = if pd.sampled {
+            r.subdivided_pairs += 1;
             patch_lower_bound(
                 &pa.arc,
                 &pb.arc,
@@ -283,6 +289,7 @@ pub fn traverse(
                 ta, tb, orient_a, orient_b, a, b, pos_ab, &pos_ba, prune_at, &mut memo,
             );
             stats.patch_tests += r.patch_tests;
+            stats.subdivided_pairs += r.subdivided_pairs;
             if !r.exact {
                 return key.max(r.lower - e);
             }

@@ -93,6 +93,7 @@ struct Output {
     overlap: bool,
     node_pairs: usize,
     leaf_tests: usize,
+    subdivided_pairs: usize,
     budget_exhausted: bool,
 }
 
@@ -107,6 +108,7 @@ impl From<&Distance> for Output {
             overlap: d.overlap,
             node_pairs: d.stats.node_pairs,
             leaf_tests: d.stats.leaf_tests,
+            subdivided_pairs: d.stats.subdivided_pairs,
             budget_exhausted: d.stats.budget_exhausted,
         }
     }
