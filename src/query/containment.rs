@@ -76,15 +76,25 @@ fn swept_angle(piece: &ProfileArc, x: Point2<f64>) -> f64 {
 }
 
 /// Classifies the meridian point `m` (rho >= 0) against the tree's profile region.
+///
+/// With the tree's chain index ([`QueryTree::node_ends`]) whole subtrees are skipped: the
+/// pieces under a node and the chord between their first and last points form a closed
+/// loop inside the node's disk, so for a point outside the disk the pieces sweep exactly the
+/// chord's angle; and their distance to the point is at least its distance to the disk.
+/// Without the index every piece is visited.
 pub fn point_in_profile(tree: &QueryTree, m: Point2<f64>) -> Inside {
     let mut total = 0.0;
     let mut margin = f64::INFINITY;
     // A point on the axis is classified like its neighbours at small rho > 0 (the axis
     // closure of an open profile is interior to the solid, not boundary).
     let w = Point2::new(m.x.max(AXIS_NUDGE * (1.0 + m.coords.norm())), m.y);
-    for p in &tree.chain {
-        total += swept_angle(p, w);
-        margin = margin.min(p.closest_point(m).0);
+    if tree.node_ends.is_empty() {
+        for p in &tree.chain {
+            total += swept_angle(p, w);
+            margin = margin.min(p.closest_point(m).0);
+        }
+    } else {
+        descend(tree, tree.root, w, m, &mut total, &mut margin);
     }
     if tree.kind == ProfileKind::OpenOnAxis {
         if let (Some(first), Some(last)) = (tree.chain.first(), tree.chain.last()) {
@@ -99,6 +109,44 @@ pub fn point_in_profile(tree: &QueryTree, m: Point2<f64>) -> Inside {
         inside: (total / TAU).round() != 0.0,
         margin,
     }
+}
+
+/// Winding and margin contributions of the pieces under `id` (see [`point_in_profile`]).
+fn descend(
+    tree: &QueryTree,
+    id: u32,
+    w: Point2<f64>,
+    m: Point2<f64>,
+    total: &mut f64,
+    margin: &mut f64,
+) {
+    let n = &tree.nodes[id as usize];
+    let Some([s, e]) = tree.node_ends[id as usize] else {
+        return;
+    };
+    let (c, r) = (n.bound.center, n.bound.radius);
+    if (w - c).norm() > r && (m - c).norm() - r >= *margin {
+        let (a, b) = (s - w, e - w);
+        *total += cross2(a, b).atan2(a.dot(&b));
+        return;
+    }
+    if n.is_leaf() {
+        for p in &tree.chain[n.patch_start as usize..n.patch_end as usize] {
+            *total += swept_angle(p, w);
+            *margin = margin.min(p.closest_point(m).0);
+        }
+        return;
+    }
+    // Nearer child first: its margin prunes more of the other.
+    let [c0, c1] = n.children;
+    let dist = |k: u32| (m - tree.nodes[k as usize].bound.center).norm();
+    let (first, second) = if dist(c0) <= dist(c1) {
+        (c0, c1)
+    } else {
+        (c1, c0)
+    };
+    descend(tree, first, w, m, total, margin);
+    descend(tree, second, w, m, total, margin);
 }
 
 /// Classifies a point given in the solid's local frame.

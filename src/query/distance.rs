@@ -205,7 +205,10 @@ pub fn distance_cached(
             .penetration
             .filter(|&(_, _, m)| m > eps_sum + slack)
             .map(|(p, _, _)| p);
-        match pen.or_else(|| certify_overlap(&a.tree, &b.tree, &pos_ab, s.best_pair, slack)) {
+        let witness = Some((s.point_a, s.point_b));
+        match pen
+            .or_else(|| certify_overlap(&a.tree, &b.tree, &pos_ab, s.best_pair, witness, slack))
+        {
             Some(x) => Verdict::Overlap(x),
             None => Verdict::Undecided,
         }

@@ -125,24 +125,32 @@ fn thetas() -> impl Iterator<Item = f64> {
 
 /// A point of `inner`'s approximating surface or interior (frame of `inner`, mapped to
 /// `outer`'s frame by `pos`) that certifies overlap with `outer` (module doc).
+#[allow(clippy::too_many_arguments)]
 fn overlap_point(
     outer: &QueryTree,
     inner: &QueryTree,
     pos: &Isometry3<f64>,
     focus: Option<u32>,
+    witness: Option<Point3<f64>>,
     e_outer: f64,
     e_inner: f64,
     slack: f64,
 ) -> Option<Point3<f64>> {
+    let threshold = e_outer + e_inner + slack;
     let deep = |x: Point3<f64>| {
         let c = point_in_solid(outer, &x);
-        c.inside && c.margin > e_outer + e_inner + slack
+        c.inside && c.margin > threshold
     };
     let focused = focus
         .map(|leaf| leaf_samples(inner, leaf))
         .unwrap_or_default();
-    if let Some(x) = focused.into_iter().map(|x| pos * x).find(|x| deep(*x)) {
+    if let Some(x) = focused.iter().map(|x| pos * x).find(|x| deep(*x)) {
         return Some(x);
+    }
+    if let Some(leaf) = focus {
+        if let Some(x) = ascend_depth(outer, inner, pos, leaf, witness, threshold) {
+            return Some(x);
+        }
     }
     for m in surface_meridian_points(inner) {
         for th in thetas() {
@@ -167,21 +175,130 @@ fn overlap_point(
     None
 }
 
+/// Signed depth of `x` (outer's frame) in `outer`: the margin inside, minus it outside.
+fn signed_depth(outer: &QueryTree, x: &Point3<f64>) -> f64 {
+    let c = point_in_solid(outer, x);
+    if c.inside {
+        c.margin
+    } else {
+        -c.margin
+    }
+}
+
+/// Pattern-search iterations of [`ascend_depth`].
+const ASCENT_ITERS: usize = 400;
+
+/// Local ascent of the signed depth in `outer` over the patches of `inner`'s leaf `leaf`,
+/// from the surface point nearest `witness` (inner's frame) and from the leaf's deepest
+/// sample: where the surfaces cross, the cap of one solid inside the other may be narrower
+/// than any fixed sampling, and its deepest point is a local maximum of the depth. Returns
+/// a point (outer's frame) deeper than `threshold`, the same certificate as a sample.
+fn ascend_depth(
+    outer: &QueryTree,
+    inner: &QueryTree,
+    pos: &Isometry3<f64>,
+    leaf: u32,
+    witness: Option<Point3<f64>>,
+    threshold: f64,
+) -> Option<Point3<f64>> {
+    let n = inner.nodes.get(leaf as usize)?;
+    let patches = &inner.patches[n.patch_start as usize..n.patch_end as usize];
+    let point = |k: usize, s: f64, th: f64| pos * lift_at(patches[k].arc.point_at(s), th);
+    let depth = |k: usize, s: f64, th: f64| signed_depth(outer, &point(k, s, th));
+    // Starts: the patch parameter nearest the witness, and the deepest focus sample.
+    let mut starts: Vec<(usize, f64, f64)> = Vec::new();
+    if let Some(w) = witness {
+        let th = w.y.atan2(w.x);
+        let m = Point2::new(w.x.hypot(w.y), w.z);
+        let mut best = (f64::INFINITY, 0, 0.0);
+        for (k, p) in patches.iter().enumerate() {
+            for i in 0..=32 {
+                let s = i as f64 / 32.0;
+                let d = (p.arc.point_at(s) - m).norm();
+                if d < best.0 {
+                    best = (d, k, s);
+                }
+            }
+        }
+        if best.0.is_finite() {
+            starts.push((best.1, best.2, th));
+        }
+    }
+    let mut best_sample = (f64::NEG_INFINITY, 0, 0.0, 0.0);
+    for k in 0..patches.len() {
+        for i in 0..FOCUS_PARAMS {
+            let s = i as f64 / (FOCUS_PARAMS - 1) as f64;
+            for j in 0..FOCUS_THETAS {
+                let th = j as f64 * TAU / FOCUS_THETAS as f64;
+                let d = depth(k, s, th);
+                if d > best_sample.0 {
+                    best_sample = (d, k, s, th);
+                }
+            }
+        }
+    }
+    if best_sample.0.is_finite() {
+        starts.push((best_sample.1, best_sample.2, best_sample.3));
+    }
+    for (k, mut s, mut th) in starts {
+        let mut d = depth(k, s, th);
+        let (mut hs, mut ht) = (0.125, TAU / FOCUS_THETAS as f64);
+        for _ in 0..ASCENT_ITERS {
+            if d > threshold {
+                return Some(point(k, s, th));
+            }
+            let mut moved = false;
+            for (ds, dt) in [
+                (1.0, 0.0),
+                (-1.0, 0.0),
+                (0.0, 1.0),
+                (0.0, -1.0),
+                (1.0, 1.0),
+                (1.0, -1.0),
+                (-1.0, 1.0),
+                (-1.0, -1.0),
+            ] {
+                let (s2, t2) = ((s + ds * hs).clamp(0.0, 1.0), th + dt * ht);
+                let d2 = depth(k, s2, t2);
+                if d2 > d {
+                    (s, th, d) = (s2, t2, d2);
+                    moved = true;
+                    break;
+                }
+            }
+            if !moved {
+                hs *= 0.5;
+                ht *= 0.5;
+                if hs < 1e-9 {
+                    break;
+                }
+            }
+        }
+        if d > threshold {
+            return Some(point(k, s, th));
+        }
+    }
+    None
+}
+
 /// Certified overlap of A and B (`pos_ab` places B in A's frame); the point is in A's frame.
-/// `focus` is the leaf pair where the traversal found the surfaces meeting, sampled densely.
+/// `focus` is the leaf pair where the traversal found the surfaces meeting (sampled densely
+/// and searched for the deepest point), `witness` the traversal's closest pair there (A's
+/// frame).
 pub fn certify_overlap(
     ta: &QueryTree,
     tb: &QueryTree,
     pos_ab: &Isometry3<f64>,
     focus: Option<(u32, u32)>,
+    witness: Option<(Point3<f64>, Point3<f64>)>,
     slack: f64,
 ) -> Option<Point3<f64>> {
     let (ea, eb) = (ta.eps, tb.eps);
     let (fa, fb) = (focus.map(|f| f.0), focus.map(|f| f.1));
-    overlap_point(ta, tb, pos_ab, fb, ea, eb, slack).or_else(|| {
-        let pos_ba = pos_ab.inverse();
-        overlap_point(tb, ta, &pos_ba, fa, eb, ea, slack).map(|x| pos_ab * x)
-    })
+    let pos_ba = pos_ab.inverse();
+    let (wa, wb) = (witness.map(|w| w.0), witness.map(|w| pos_ba * w.1));
+    overlap_point(ta, tb, pos_ab, fb, wb, ea, eb, slack)
+        .or_else(|| overlap_point(tb, ta, &pos_ba, fa, wa, eb, ea, slack).map(|x| pos_ab * x))
 }
 
 /// Whether `inner`'s boundary is certainly outside `outer` (surfaces known to be apart):

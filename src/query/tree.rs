@@ -123,6 +123,11 @@ pub struct QueryTree {
     pub kind: ProfileKind,
     /// Largest leaf eps.
     pub eps: f64,
+    /// First and last chain point under each node (`None` for nodes without pieces), when
+    /// the leaves' pieces are consecutive runs of [`QueryTree::chain`] in order and join up
+    /// (checked by [`QueryTree::index_chain`]); empty otherwise. Point-in-solid tests use it
+    /// to skip whole subtrees ([`super::containment`]).
+    pub node_ends: Vec<Option<[Point2<f64>; 2]>>,
 }
 
 impl QueryTree {
@@ -141,10 +146,12 @@ impl QueryTree {
                 .collect(),
             kind,
             eps: leaves.iter().map(|l| l.eps).fold(0.0, f64::max),
+            node_ends: Vec::new(),
         };
         if !leaves.is_empty() {
             t.root = t.build(&leaves);
         }
+        t.index_chain();
         t
     }
 
@@ -201,6 +208,7 @@ impl QueryTree {
                 .collect(),
             kind,
             eps: 0.0,
+            node_ends: Vec::new(),
         };
         let roots: Vec<u32> = bt
             .spirals()
@@ -216,7 +224,47 @@ impl QueryTree {
         if !roots.is_empty() {
             t.root = t.build_upper(&roots);
         }
+        t.index_chain();
         t
+    }
+
+    /// Fills [`QueryTree::node_ends`], or leaves it empty when the leaves' patches are not
+    /// the chain's pieces in order, joined within `1e-9` of the coordinates.
+    pub fn index_chain(&mut self) {
+        self.node_ends.clear();
+        if self.chain.len() != self.patches.len() || self.root == NO_CHILD {
+            return;
+        }
+        let mut ends = vec![None; self.nodes.len()];
+        if self.ends_of(self.root, &mut ends) {
+            self.node_ends = ends;
+        }
+    }
+
+    /// Post-order fill of `ends` under `id`; `false` when two consecutive runs do not join.
+    fn ends_of(&self, id: u32, ends: &mut [Option<[Point2<f64>; 2]>]) -> bool {
+        let n = self.nodes[id as usize];
+        if n.is_leaf() {
+            let (s, e) = (n.patch_start as usize, n.patch_end as usize);
+            ends[id as usize] = (s < e).then(|| [self.chain[s].start(), self.chain[e - 1].end()]);
+            return true;
+        }
+        let [c0, c1] = n.children;
+        if !self.ends_of(c0, ends) || !self.ends_of(c1, ends) {
+            return false;
+        }
+        ends[id as usize] = match (ends[c0 as usize], ends[c1 as usize]) {
+            (Some([a, j0]), Some([j1, b])) => {
+                let tol = 1e-9 * (1.0 + j0.coords.norm());
+                if (j0 - j1).norm() > tol {
+                    return false;
+                }
+                Some([a, b])
+            }
+            (x, None) => x,
+            (None, y) => y,
+        };
+        true
     }
 
     fn copy_subtree(&mut self, bt: &BiarcTree, id: u32) -> u32 {
