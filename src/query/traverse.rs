@@ -422,6 +422,37 @@ pub fn traverse(
         }
         stats.max_queue = stats.max_queue.max(heap.len());
     }
+    if out.upper.is_infinite() && !out.surfaces_meet {
+        // The budget ran out before any leaf pair: measure one, reached by a greedy descent
+        // along the smaller node-pair bound, so that an anytime answer always has a finite
+        // upper bound and witness points (the lower bound is unchanged).
+        let (mut a, mut b) = (ta.root, tb.root);
+        loop {
+            let (na, nb) = (&ta.nodes[a as usize], &tb.nodes[b as usize]);
+            if na.is_leaf() && nb.is_leaf() {
+                break;
+            }
+            let split_a = !na.is_leaf() && (nb.is_leaf() || na.bound.radius >= nb.bound.radius);
+            let pairs = if split_a {
+                [(na.children[0], b), (na.children[1], b)]
+            } else {
+                [(a, nb.children[0]), (a, nb.children[1])]
+            };
+            let mut bound = |(x, y): (u32, u32)| {
+                stats.bound_tests += 1;
+                node_pair_bound(
+                    &ta.nodes[x as usize].bound,
+                    &tb.nodes[y as usize].bound,
+                    pos_ab,
+                    opts.bound,
+                    f64::INFINITY,
+                )
+            };
+            let (b0, b1) = (bound(pairs[0]), bound(pairs[1]));
+            (a, b) = if b0 <= b1 { pairs[0] } else { pairs[1] };
+        }
+        evaluate(a, b, f64::NEG_INFINITY, &mut out, &mut stats);
+    }
     out.lower = lower.min(pruned_min).min(out.upper).max(0.0);
     out.stats = stats;
     out
