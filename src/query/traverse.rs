@@ -226,6 +226,12 @@ pub(crate) fn leaf_pair(
             }
             let in_a = point_in_solid(ta, q);
             let in_b = point_in_solid(tb, &(pos_ba * p));
+            if in_a.inside || in_b.inside {
+                // An interpenetrating common normal with an end inside the other solid: the
+                // patches may cross in a loop that no sampled meridian met, so the solids
+                // may overlap here and this leaf pair cannot bound the distance above 0.
+                r.lower = r.lower.min(0.0);
+            }
             if in_a.inside && in_b.inside {
                 let m = in_a.margin.min(in_b.margin);
                 if r.penetration.is_none_or(|(_, _, m0)| m > m0) {
