@@ -138,7 +138,8 @@ pub fn check_query(a: &Solid, b: &Solid) -> Result<(), QueryError> {
     let t = a.relative_pose(b).translation.vector;
     let tmax = t.amax();
     let scale = 1.0 + tmax + extent(&a.tree) + extent(&b.tree);
-    if !(scale <= MAX_SCALE) {
+    // NaN fails `is_finite`; a finite scale must not exceed the range.
+    if !scale.is_finite() || scale > MAX_SCALE {
         return Err(QueryError::OutOfRange { scale });
     }
     Ok(())

@@ -367,7 +367,7 @@ pub fn check_query(
             d.lower
         ));
     }
-    if !(r.distance <= d.upper + e) {
+    if r.distance.is_nan() || r.distance > d.upper + e {
         return Err(format!(
             "{label}: reference {} (surface {}, nested {}) outside [{}, {}]",
             r.distance, r.surface_distance, r.nested, d.lower, d.upper
