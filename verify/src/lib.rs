@@ -3,3 +3,6 @@
 pub mod circles;
 pub mod companion;
 pub mod exact_circle;
+pub mod oracle;
+pub mod queries;
+pub mod random_profiles;

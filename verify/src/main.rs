@@ -33,6 +33,50 @@ enum Command {
         #[arg(long, default_value_t = 0.05)]
         min_gap: f64,
     },
+    /// Certified distance queries against the independent oracle (issue 10): built-in
+    /// models, M_t frames and random freeform profiles under far, separated, near-touching,
+    /// touching, overlapping, nested and coincident poses.
+    Queries {
+        /// Random cases (the fixed regression cases come on top).
+        #[arg(long, default_value_t = 1000)]
+        count: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Tree eps values to draw from, comma separated.
+        #[arg(long, value_delimiter = ',', default_values_t = verify::queries::DEFAULT_EPS.to_vec())]
+        eps: Vec<f64>,
+        /// Directory for reproducers (random profiles as TOML, failures.jsonl).
+        #[arg(long, default_value = "target/verify-queries")]
+        out: std::path::PathBuf,
+        /// Worker threads (default: all cores).
+        #[arg(long, default_value_t = 0)]
+        threads: usize,
+        /// Random profiles in the pool (default: count / 8, between 10 and 200).
+        #[arg(long, default_value_t = 0)]
+        random_profiles: usize,
+        /// Failures printed in full.
+        #[arg(long, default_value_t = 25)]
+        show: usize,
+        /// Leave out the fixed regression cases.
+        #[arg(long)]
+        no_regressions: bool,
+    },
+    /// One query checked against the oracle: solids as built-in names or profile files,
+    /// B placed by --pose-b as in `revdist distance`.
+    Oracle {
+        a: String,
+        b: String,
+        #[arg(long, default_value = "{}")]
+        pose_b: String,
+        #[arg(long, default_value_t = 1e-4)]
+        eps: f64,
+        /// Target width of the query's interval.
+        #[arg(long, default_value_t = 0.0)]
+        tolerance: f64,
+        /// Refine the query's witnesses on the exact surfaces.
+        #[arg(long)]
+        refine: bool,
+    },
 }
 
 fn main() {
@@ -54,5 +98,157 @@ fn main() {
             seed,
             min_gap,
         } => verify::circles::print_eight(count, seed, min_gap),
+        Command::Queries {
+            count,
+            seed,
+            eps,
+            out,
+            threads,
+            random_profiles,
+            show,
+            no_regressions,
+        } => {
+            if eps.is_empty() || eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
+                eprintln!("error: --eps needs positive numbers, got {eps:?}");
+                std::process::exit(2);
+            }
+            let opts = verify::queries::CampaignOptions {
+                count,
+                seed,
+                eps,
+                out,
+                threads,
+                random_profiles,
+                regressions: !no_regressions,
+                print_failures: show,
+            };
+            let s = verify::queries::run(&opts);
+            if let Err(e) = s.write_reproducers() {
+                eprintln!("error: writing reproducers to {}: {e}", opts.out.display());
+            }
+            print!("{}", s.report(show));
+            if s.violation_count() > 0 {
+                std::process::exit(1);
+            }
+        }
+        Command::Oracle {
+            a,
+            b,
+            pose_b,
+            eps,
+            tolerance,
+            refine,
+        } => {
+            if let Err(e) = oracle_command(&a, &b, &pose_b, eps, tolerance, refine) {
+                eprintln!("error: {e}");
+                std::process::exit(2);
+            }
+        }
     }
+}
+
+/// A built-in model or a profile file.
+fn load(spec: &str) -> Result<revdist::profile::Profile, String> {
+    if spec == "straight-span" {
+        return Ok(verify::queries::straight_span_profile());
+    }
+    match revdist::models::model(spec) {
+        Ok(p) => Ok(p),
+        Err(revdist::models::ModelError::UnknownModel { .. }) => {
+            revdist::profile_file::load_path(std::path::Path::new(spec))
+                .map_err(|e| format!("'{spec}': {e}"))
+        }
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// Parses `{"translation": [..], "rotation": [w, x, y, z]}` (both optional).
+fn parse_pose(s: &str) -> Result<verify::queries::PoseSpec, String> {
+    let nums = |key: &str, n: usize| -> Result<Option<Vec<f64>>, String> {
+        let Some(i) = s.find(&format!("\"{key}\"")) else {
+            return Ok(None);
+        };
+        let rest = &s[i..];
+        let (open, close) = (
+            rest.find('[').ok_or("missing '['")?,
+            rest.find(']').ok_or("missing ']'")?,
+        );
+        let v: Vec<f64> = rest[open + 1..close]
+            .split(',')
+            .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{key}: {e}")))
+            .collect::<Result<_, _>>()?;
+        if v.len() != n {
+            return Err(format!("{key} needs {n} numbers"));
+        }
+        Ok(Some(v))
+    };
+    let t = nums("translation", 3)?.unwrap_or(vec![0.0; 3]);
+    let r = nums("rotation", 4)?.unwrap_or(vec![1.0, 0.0, 0.0, 0.0]);
+    Ok(verify::queries::PoseSpec {
+        translation: [t[0], t[1], t[2]],
+        rotation: [r[0], r[1], r[2], r[3]],
+    })
+}
+
+fn oracle_command(
+    a: &str,
+    b: &str,
+    pose: &str,
+    eps: f64,
+    tolerance: f64,
+    refine: bool,
+) -> Result<(), String> {
+    let (pa, pb) = (load(a)?, load(b)?);
+    let pose = parse_pose(pose)?;
+    let (d, o, v, tq, to) = verify::queries::single(&pa, &pb, &pose, eps, tolerance, refine)?;
+    println!(
+        "query   value {:.12e} interval [{:.12e}, {:.12e}] overlap {} ({:.3} ms)",
+        d.value,
+        d.lower,
+        d.upper,
+        d.overlap,
+        tq.as_secs_f64() * 1e3
+    );
+    println!(
+        "        point_a {:?} point_b {:?}",
+        d.point_a.coords.as_slice(),
+        d.point_b.coords.as_slice()
+    );
+    println!(
+        "oracle  surface distance in [{:.12e}, {:.12e}], overlap {} (a in b {}, b in a {}), min signed {:.3e}; {} cells, {} refinements{} ({:.1} ms)",
+        o.lower,
+        o.upper,
+        o.overlap(),
+        o.a_in_b,
+        o.b_in_a,
+        o.min_signed,
+        o.cells,
+        o.refinements,
+        if o.budget_hit { ", budget hit" } else { "" },
+        to.as_secs_f64() * 1e3
+    );
+    println!(
+        "        point_a {:?} point_b {:?}",
+        o.point_a.coords.as_slice(),
+        o.point_b.coords.as_slice()
+    );
+    if let Some(p) = o.deep_point {
+        println!(
+            "        deepest boundary sample inside the other solid: {:?} (depth {:.3e})",
+            p.coords.as_slice(),
+            -o.min_signed
+        );
+    }
+    if v.is_empty() {
+        println!("no violations");
+    }
+    for x in &v {
+        println!(
+            "VIOLATION {}: {} (excess {:.3e})",
+            x.check.name(),
+            x.detail,
+            x.excess
+        );
+    }
+    Ok(())
 }
