@@ -58,7 +58,37 @@ impl PlanarCurve for SpanCurve<'_> {
             (dp[0] * w - p[0] * dp[2]) / (w * w),
             (dp[1] * w - p[1] * dp[2]) / (w * w),
         );
+        if d == Vector2::zeros() && (u == 0.0 || u == 1.0) {
+            return (point, self.end_tangent_limit(u == 0.0));
+        }
         (point, d)
+    }
+}
+
+impl SpanCurve<'_> {
+    /// The limit of the tangent at an end where the derivative vanishes (repeated control
+    /// points at the end of the span): near that end the hodograph is dominated by the first
+    /// control leg of non-zero length, so the unit tangent tends to the direction from the end
+    /// point to the first distinct control point (start) or from the last distinct one to the
+    /// end (end). Returned with that leg's hodograph magnitude `n |P_k - P_end|`; zero when
+    /// every control point coincides.
+    fn end_tangent_limit(&self, at_start: bool) -> Vector2<f64> {
+        let h = self.homogeneous;
+        let n = h.len() - 1;
+        let pt = |k: usize| Point2::new(h[k][0] / h[k][2], h[k][1] / h[k][2]);
+        let (end, others): (usize, Vec<usize>) = if at_start {
+            (0, (1..=n).collect())
+        } else {
+            (n, (0..n).rev().collect())
+        };
+        for k in others {
+            let leg = pt(k) - pt(end);
+            if leg != Vector2::zeros() {
+                let dir = if at_start { leg } else { -leg };
+                return dir * n as f64;
+            }
+        }
+        Vector2::zeros()
     }
 }
 

@@ -235,3 +235,25 @@ fn every_built_in_model_is_bounded() {
     // the loosest: measured 3.46; fine pieces approach the asymptotic ~1.7-1.9.
     assert!(worst < MODEL_MAX_RATIO, "bound / sampled up to {worst}");
 }
+
+/// A piece whose last two control points coincide (zero derivative at its end, a valid curve
+/// with a well-defined limiting tangent) builds, and its bounds hold against dense sampling.
+#[test]
+fn repeated_end_control_point_builds() {
+    let text = r#"
+name = "zero-end-tangent"
+[[piece]]
+degree = 3
+knots = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0]
+points = [[0.0, 0.0], [0.6, 0.0], [0.8, 0.6], [0.5, 1.0], [0.5, 1.0]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[0.5, 1.0], [0.0, 1.0]]
+"#;
+    let prof = crate::profile_file::from_toml_str(text).unwrap();
+    for eps in [1e-3, 1e-5] {
+        let tree = BiarcTree::build(&prof, eps).unwrap();
+        check_tree_with(&prof, &tree, MODEL_SAMPLES);
+    }
+}

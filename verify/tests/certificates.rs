@@ -318,3 +318,24 @@ fn overlap_is_reported_where_certain() {
         }
     }
 }
+
+/// A piece whose last two control points coincide (zero end derivative; found by the
+/// campaign's generator) builds, and its queries pass the oracle's checks.
+#[test]
+fn repeated_end_control_point_profile() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions/zero-end-tangent.toml");
+    let a = revdist::profile_file::load_path(&path).unwrap();
+    let pawn = model("pawn").unwrap();
+    for eps in [1e-3, 1e-5] {
+        let c = checked(
+            &a,
+            &pawn,
+            &translation(1.35, 0.1, 0.2),
+            eps,
+            &QueryOptions::default(),
+            &format!("zero end tangent eps {eps}"),
+        );
+        assert!(!c.d.overlap);
+    }
+}
