@@ -20,7 +20,7 @@
 //! `2 sag` of the polyline, where the side of the tangent at the closest curve point decides
 //! (the polygon and the curve bound regions that differ only within `sag` of the polyline).
 
-use super::profile_eval::{cross, dist, dot, norm, sub, ProfileGeom, Sample, P2};
+use super::profile_eval::{cross, dist, dot, norm, seg_distance_sq, sub, ProfileGeom, Sample, P2};
 
 /// Segments per leaf of the hierarchy.
 const LEAF_SEGMENTS: usize = 4;
@@ -75,20 +75,6 @@ fn box_distance_sq(q: P2, min: P2, max: P2) -> f64 {
     let dx = (min[0] - q[0]).max(0.0).max(q[0] - max[0]);
     let dz = (min[1] - q[1]).max(0.0).max(q[1] - max[1]);
     dx * dx + dz * dz
-}
-
-#[inline]
-fn seg_distance_sq(q: P2, a: P2, b: P2) -> (f64, f64) {
-    let ab = sub(b, a);
-    let l2 = dot(ab, ab);
-    let s = if l2 > 0.0 {
-        (dot(sub(q, a), ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let dx = a[0] + s * ab[0] - q[0];
-    let dz = a[1] + s * ab[1] - q[1];
-    (dx * dx + dz * dz, s)
 }
 
 impl PlanarIndex {

@@ -409,6 +409,12 @@ fn chord_deviation(pc: &PieceEval, ta: f64, tb: f64, pa: P2, pb: P2) -> f64 {
 
 /// Distance from `q` to the segment `[a, b]`.
 pub fn point_segment_distance(q: P2, a: P2, b: P2) -> f64 {
+    seg_distance_sq(q, a, b).0.sqrt()
+}
+
+/// Squared distance from `q` to the segment `[a, b]` and the parameter of the closest point.
+#[inline]
+pub fn seg_distance_sq(q: P2, a: P2, b: P2) -> (f64, f64) {
     let ab = sub(b, a);
     let l2 = dot(ab, ab);
     let s = if l2 > 0.0 {
@@ -416,7 +422,9 @@ pub fn point_segment_distance(q: P2, a: P2, b: P2) -> f64 {
     } else {
         0.0
     };
-    dist(q, [a[0] + s * ab[0], a[1] + s * ab[1]])
+    let dx = a[0] + s * ab[0] - q[0];
+    let dz = a[1] + s * ab[1] - q[1];
+    (dx * dx + dz * dz, s)
 }
 
 /// Appends samples for `(ta, tb]` of piece `k`, bisecting until the chord deviation is below

@@ -173,6 +173,24 @@ struct Dir<'a> {
     margin: f64,
 }
 
+impl<'a> Dir<'a> {
+    /// Search over `src`'s surface against `dst`, `src_to_dst` mapping src's frame into dst's.
+    fn new(
+        src: &'a PlanarIndex,
+        dst: &'a PlanarIndex,
+        src_to_dst: &Isometry3<f64>,
+        margin: f64,
+    ) -> Dir<'a> {
+        Dir {
+            src,
+            dst,
+            rot: *src_to_dst.rotation.to_rotation_matrix().matrix(),
+            trans: src_to_dst.translation.vector,
+            margin,
+        }
+    }
+}
+
 /// A realised pair in the source frame.
 #[derive(Debug, Clone, Copy)]
 struct Pair {
@@ -317,14 +335,7 @@ impl<'a> Dir<'a> {
         let dy_dt = Vector3::new(j.d1[0] * c, j.d1[0] * s, j.d1[1]);
         let dy_dth = Vector3::new(-j.p[0] * s, j.p[0] * c, 0.0);
         let q = self.to_dst(&y);
-        let rho_q = q.x.hypot(q.y);
-        let cp = self.dst.closest([rho_q, q.z]);
-        let (cphi, sphi) = if rho_q > 0.0 {
-            (q.x / rho_q, q.y / rho_q)
-        } else {
-            (1.0, 0.0)
-        };
-        let x = Point3::new(cp.p[0] * cphi, cp.p[0] * sphi, cp.p[1]);
+        let x = surface_foot(self.dst, &q);
         let v = q - x;
         let d = v.norm();
         let grad = if d > 0.0 {
@@ -479,24 +490,11 @@ impl<'a> Dir<'a> {
             }
             // Project x (source frame) onto the source surface.
             let x = pair.x;
-            let rho_x = x.x.hypot(x.y);
-            let cy = self.src.closest([rho_x, x.z]);
-            let (c, s) = if rho_x > 0.0 {
-                (x.x / rho_x, x.y / rho_x)
-            } else {
-                (1.0, 0.0)
-            };
-            let y = Point3::new(cy.p[0] * c, cy.p[0] * s, cy.p[1]);
+            let y = surface_foot(self.src, &x);
             // Project y onto the target surface.
             let q = self.to_dst(&y);
-            let rho_q = q.x.hypot(q.y);
-            let cx = self.dst.closest([rho_q, q.z]);
-            let (c, s) = if rho_q > 0.0 {
-                (q.x / rho_q, q.y / rho_q)
-            } else {
-                (1.0, 0.0)
-            };
-            let xn = self.to_src(&Point3::new(cx.p[0] * c, cx.p[0] * s, cx.p[1]));
+            let foot = surface_foot(self.dst, &q);
+            let xn = self.to_src(&foot);
             let d = (y - xn).norm();
             if d < pair.d {
                 let gain = pair.d - d;
@@ -682,6 +680,19 @@ impl BetterThan for Option<Pair> {
     }
 }
 
+/// The closest point of `idx`'s surface of revolution to `q` (its frame): the planar closest
+/// point of `q`'s meridian coordinates, lifted into `q`'s meridian plane.
+fn surface_foot(idx: &PlanarIndex, q: &Point3<f64>) -> Point3<f64> {
+    let rho = q.x.hypot(q.y);
+    let cp = idx.closest([rho, q.z]);
+    let (c, s) = if rho > 0.0 {
+        (q.x / rho, q.y / rho)
+    } else {
+        (1.0, 0.0)
+    };
+    Point3::new(cp.p[0] * c, cp.p[0] * s, cp.p[1])
+}
+
 /// Relative margin for the inside census: a sample must be deeper than this times the scene
 /// scale (1 + |translation| + sizes) to count as inside; a few hundred ulps of the scene's
 /// coordinates, far below any eps a query uses.
@@ -699,20 +710,8 @@ pub fn surface_distance(
     let scene = 1.0 + pos_ab.translation.vector.norm() + a.geom.size + b.geom.size;
     let margin = INSIDE_MARGIN_REL * scene;
     let inv = pos_ab.inverse();
-    let ab = Dir {
-        src: a,
-        dst: b,
-        rot: *inv.rotation.to_rotation_matrix().matrix(),
-        trans: inv.translation.vector,
-        margin,
-    };
-    let ba = Dir {
-        src: b,
-        dst: a,
-        rot: *pos_ab.rotation.to_rotation_matrix().matrix(),
-        trans: pos_ab.translation.vector,
-        margin,
-    };
+    let ab = Dir::new(a, b, &inv, margin);
+    let ba = Dir::new(b, a, pos_ab, margin);
     let new_state = || State {
         best: None,
         min_signed: f64::INFINITY,
@@ -788,13 +787,7 @@ pub fn refine_hint(
     pb: &Point3<f64>,
 ) -> (f64, Point3<f64>, Point3<f64>) {
     let inv = pos_ab.inverse();
-    let ab = Dir {
-        src: a,
-        dst: b,
-        rot: *inv.rotation.to_rotation_matrix().matrix(),
-        trans: inv.translation.vector,
-        margin: 0.0,
-    };
+    let ab = Dir::new(a, b, &inv, 0.0);
     let mut st = State {
         best: None,
         min_signed: f64::INFINITY,
