@@ -1,12 +1,14 @@
 //! The distance query between two posed solids: Algorithm 2 over the boundary surfaces
-//! ([`super::traverse`]), then solid semantics (overlap and nesting give 0), optional
-//! refinement on the exact surfaces, and frame coherence through a [`QueryCache`].
+//! ([`super::traverse`]), then solid semantics (overlap and nesting give 0,
+//! [`super::overlap`]), optional refinement on the exact surfaces, and frame coherence
+//! through a [`QueryCache`].
 //!
-//! Certification: `surface lower <= dist(dA, dB) <= surface upper`. Solids that do not
-//! overlap have distance `dist(dA, dB)`; overlapping or nested solids have distance 0. The
-//! result reports `lower = 0` whenever overlap cannot be excluded, and `overlap = true` with
-//! `lower = upper = 0` only when it is certified (a point of one boundary lies inside the
-//! other solid with a classification margin larger than the trees' eps).
+//! Certification: the traversal bounds the distance between the boundary surfaces; the
+//! interval is widened by the query's rounding slack ([`query_slack`]: every snap and
+//! tolerance of the kernels). Solids that do not overlap have the surfaces' distance;
+//! overlapping or nested solids have distance 0. `overlap = true` (with
+//! `lower = upper = 0`) only with a certificate: a point inside both true solids. When
+//! overlap can be neither certified nor excluded at the trees' accuracy, `lower = 0`.
 
 use super::bounds::BoundKind;
 use super::overlap::{certify_overlap, nesting, Verdict};

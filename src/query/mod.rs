@@ -6,8 +6,11 @@
 //!   circle);
 //! * [`tree`]: the query's view of a solid's bounding hierarchy;
 //! * [`bounds`]: provably valid node-pair lower bounds;
+//! * [`certify`]: subdivision lower bounds for patch pairs whose kernel had to sample (a
+//!   sampled value never resolves a lower bound);
 //! * [`traverse`]: Algorithm 2 (best-first over node pairs) with an anytime budget;
-//! * [`containment`]: point-in-solid tests (solids, not surfaces);
+//! * [`containment`]: point-in-solid tests (solids, not surfaces), through the tree;
+//! * [`overlap`]: certificates of overlap and nesting (points inside both true solids);
 //! * [`refine`]: witness refinement on the exact NURBS surfaces;
 //! * [`distance`]: the query itself, with frame coherence.
 

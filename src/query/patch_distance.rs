@@ -29,6 +29,14 @@
 //! * (c) parallel vs parallel: critical points of the distance from one to the other.
 //! * Coaxial patches reduce exactly to the planar distance of the profile pieces.
 //!
+//! Where a polynomial kernel reports a degenerate configuration that has no closed form
+//! here (intersecting major circles, non-coaxial continua of binormals), the critical angles
+//! come from the sampled scan of [`sweep`] and [`PatchDistance::sampled`] is set: the
+//! distance is then a realised pair (an upper bound) and the caller bounds the pair from
+//! below by subdivision ([`super::certify`]). The continua with a closed form are exact:
+//! coaxial circles (constant distance), a circle parallel to a flat annulus, a sphere centre
+//! on the other patch's axis.
+//!
 //! Interior intersection loops that touch no boundary are reported through
 //! [`PatchDistance::interior_pairs`]: at the deepest point of such a loop the common normal
 //! has both points inside the other solid, which the caller (who knows the solids) tests.
