@@ -104,6 +104,10 @@ pub struct PatchOptions {
     /// Narrow the major-circle angles of torus/torus common normals by the Gauss map
     /// (paper 3.3); results agree with and without it.
     pub gauss_restriction: bool,
+    /// The patches may intersect. A caller that has a positive lower bound of their
+    /// distance (e.g. the solid-torus bound of their disks) sets `false`: disjoint patches
+    /// have no intersection loop, so the crossing scan (d) is skipped.
+    pub may_intersect: bool,
 }
 
 impl Default for PatchOptions {
@@ -112,6 +116,7 @@ impl Default for PatchOptions {
             skip_interior: false,
             kernel: Kernel::Binormals,
             gauss_restriction: true,
+            may_intersect: true,
         }
     }
 }
@@ -265,7 +270,7 @@ pub fn patch_distance_memo(
     // (d) intersection loops inside both patches: sign changes of the other surface's
     // implicit function along meridians (through every interior candidate and four
     // fixed ones).
-    if best.d > 0.0 {
+    if best.d > 0.0 && opts.may_intersect {
         let mut th_a: Vec<f64> = FIXED_MERIDIANS.to_vec();
         let mut th_b: Vec<f64> = FIXED_MERIDIANS.to_vec();
         for (p, q) in &pairs {

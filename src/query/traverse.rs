@@ -196,7 +196,12 @@ pub(crate) fn leaf_pair(
             index_a: ia,
             index_b: ib,
         };
-        let pd = patch_distance_memo(pa, pb, pos_ab, PatchOptions::default(), Some(slot));
+        // A positive solid-torus bound proves the patches disjoint: no crossing scan.
+        let popts = PatchOptions {
+            may_intersect: bound <= 0.0,
+            ..PatchOptions::default()
+        };
+        let pd = patch_distance_memo(pa, pb, pos_ab, popts, Some(slot));
         let pair_lower = if pd.sampled {
             r.subdivided_pairs += 1;
             patch_lower_bound(
