@@ -4,12 +4,9 @@
 //! in 1e-3..1e-6, the query's answer passes every check of the independent oracle.
 //! Run in release mode: `cargo test --release -p verify --test proptest_profiles`.
 
-use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
+use nalgebra::{Quaternion, Translation3, UnitQuaternion};
 use proptest::prelude::*;
-use revdist::query::{distance, QueryOptions};
-use revdist::solid::Solid;
-use std::sync::Arc;
-use verify::oracle::{self, check, surface_distance, CheckInput, OracleOptions};
+use verify::queries::{single, PoseSpec};
 use verify::random_profiles::{random_profile, SplitMix64};
 
 proptest! {
@@ -31,23 +28,11 @@ proptest! {
         let t = Translation3::new(dir[0] / n * reach, dir[1] / n * reach, dir[2] / n * reach);
         let q = Quaternion::new(rot[0], rot[1], rot[2], rot[3]);
         let r = if q.norm() > 1e-3 { UnitQuaternion::from_quaternion(q) } else { UnitQuaternion::identity() };
-        let pose = Isometry3::from_parts(t, r);
-        let sa = Solid::from_profile(Arc::new(a.clone()), eps).expect("every valid profile builds");
-        let sb = Solid::from_profile(Arc::new(b.clone()), eps).expect("every valid profile builds").with_pose(pose);
-        let d = distance(&sa, &sb, &QueryOptions::default());
-        let (ia, ib) = (oracle::index(&a), oracle::index(&b));
-        let o = surface_distance(&ia, &ib, &pose, &OracleOptions::full());
-        let v = check(&CheckInput {
-            d: &d,
-            pose_a: &Isometry3::identity(),
-            pose_b: &pose,
-            eps_a: sa.tree.eps,
-            eps_b: sb.tree.eps,
-            tolerance: 0.0,
-            oracle: &o,
-            a: &ia,
-            b: &ib,
-        });
+        let pose = PoseSpec {
+            translation: [t.x, t.y, t.z],
+            rotation: [r.w, r.i, r.j, r.k],
+        };
+        let (d, _, v, _, _) = single(&a, &b, &pose, eps, 0.0, false).expect("every valid profile builds");
         prop_assert!(
             v.is_empty(),
             "{:?}\nanswer {:?}\nA:\n{}\nB:\n{}",

@@ -240,6 +240,20 @@ struct State {
     refinements: usize,
 }
 
+impl State {
+    /// Nothing found yet.
+    fn new() -> State {
+        State {
+            best: None,
+            min_signed: f64::INFINITY,
+            deep: None,
+            inside: false,
+            cells: 0,
+            refinements: 0,
+        }
+    }
+}
+
 impl<'a> Dir<'a> {
     fn to_dst(&self, y: &Point3<f64>) -> Point3<f64> {
         Point3::from(self.rot * y.coords + self.trans)
@@ -712,14 +726,7 @@ pub fn surface_distance(
     let inv = pos_ab.inverse();
     let ab = Dir::new(a, b, &inv, margin);
     let ba = Dir::new(b, a, pos_ab, margin);
-    let new_state = || State {
-        best: None,
-        min_signed: f64::INFINITY,
-        deep: None,
-        inside: false,
-        cells: 0,
-        refinements: 0,
-    };
+    let new_state = State::new;
     // Pairs move between the two directions' frames: (y on A, x on B) in A's frame is
     // (x, y) mapped by `inv` in B's frame.
     let to_ba = |p: Pair| Pair {
@@ -788,14 +795,7 @@ pub fn refine_hint(
 ) -> (f64, Point3<f64>, Point3<f64>) {
     let inv = pos_ab.inverse();
     let ab = Dir::new(a, b, &inv, 0.0);
-    let mut st = State {
-        best: None,
-        min_signed: f64::INFINITY,
-        deep: None,
-        inside: false,
-        cells: 0,
-        refinements: 0,
-    };
+    let mut st = State::new();
     // Start on A at the projection of pa, with pb as the partner; polish, then minimise.
     let rho = pa.x.hypot(pa.y);
     let c = a.closest([rho, pa.z]);
