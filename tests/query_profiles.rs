@@ -6,7 +6,7 @@
 mod reference;
 
 use nalgebra::{Isometry3, Point2, Translation3, UnitQuaternion, Vector3};
-use reference::{check_query, reference, ring_profile, Rng, REFERENCE_ERROR, ROUNDING};
+use reference::{brackets, check_query, reference, ring_profile, Rng};
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions};
@@ -107,7 +107,7 @@ fn anytime_budget_keeps_bounds_certified() {
             let d = distance(&vase, &b, &opts);
             assert!(d.stats.node_pairs <= budget, "case {i}: budget {budget}");
             assert!(
-                d.lower <= r.distance + ROUNDING && r.distance <= d.upper + REFERENCE_ERROR,
+                brackets(&d, r.distance),
                 "case {i} budget {budget}: {} outside [{}, {}]",
                 r.distance,
                 d.lower,
@@ -150,7 +150,7 @@ fn warm_start_sequence() {
             );
             for (what, d) in [("warm", &dw), ("cold", &dc)] {
                 assert!(
-                    d.lower <= r.distance + ROUNDING && r.distance <= d.upper + REFERENCE_ERROR,
+                    brackets(d, r.distance),
                     "step {k} {what}: reference {} outside [{}, {}]",
                     r.distance,
                     d.lower,
@@ -201,7 +201,7 @@ fn refinement_is_accurate_below_eps() {
             d.lower,
             d.upper
         );
-        assert!(d.lower <= r.distance + ROUNDING && r.distance <= d.upper + REFERENCE_ERROR);
+        assert!(brackets(&d, r.distance));
         checked += 1;
     }
     assert!(checked >= 3, "only {checked} separated cases");

@@ -160,7 +160,7 @@ pub fn try_distance_cached(
     cache: &mut QueryCache,
 ) -> Result<Distance, QueryError> {
     check_query(a, b)?;
-    Ok(distance_cached(a, b, opts, cache))
+    Ok(checked_distance(a, b, opts, cache))
 }
 
 /// [`distance`] with a warm start from `cache`, which is updated.
@@ -174,18 +174,20 @@ pub fn distance_cached(
     opts: &QueryOptions,
     cache: &mut QueryCache,
 ) -> Distance {
-    if check_query(a, b).is_err() {
-        // Outside the representable range the only certificate is the trivial one.
-        return Distance {
-            value: f64::INFINITY,
-            lower: 0.0,
-            upper: f64::INFINITY,
-            point_a: Point3::origin(),
-            point_b: Point3::origin(),
-            overlap: false,
-            stats: TraversalStats::default(),
-        };
-    }
+    // Outside the representable range the only certificate is the trivial one.
+    try_distance_cached(a, b, opts, cache).unwrap_or(Distance {
+        value: f64::INFINITY,
+        lower: 0.0,
+        upper: f64::INFINITY,
+        point_a: Point3::origin(),
+        point_b: Point3::origin(),
+        overlap: false,
+        stats: TraversalStats::default(),
+    })
+}
+
+/// The query proper, for solids that passed [`check_query`].
+fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
     let pos_ab = a.relative_pose(b);
     let topts = TraversalOptions {
         tolerance: opts.tolerance,

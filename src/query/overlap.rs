@@ -22,6 +22,7 @@
 //! Every margin comparison adds the query's rounding slack (see [`super::distance`]).
 
 use super::containment::{point_in_profile, point_in_solid};
+use super::patch::{e_rho, lift};
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point2, Point3};
 use std::f64::consts::TAU;
@@ -70,24 +71,6 @@ const FOCUS_PARAMS: usize = 9;
 /// Revolution angles for the focus leaf's samples.
 const FOCUS_THETAS: usize = 48;
 
-/// Dense samples (tree frame) of one leaf's patches: where the traversal found the
-/// approximating surfaces meeting, the penetration, if any, is nearby.
-fn leaf_samples(tree: &QueryTree, leaf: u32) -> Vec<Point3<f64>> {
-    let Some(n) = tree.nodes.get(leaf as usize) else {
-        return Vec::new();
-    };
-    let mut out = Vec::new();
-    for p in &tree.patches[n.patch_start as usize..n.patch_end as usize] {
-        for i in 0..FOCUS_PARAMS {
-            let m = p.arc.point_at(i as f64 / (FOCUS_PARAMS - 1) as f64);
-            for k in 0..FOCUS_THETAS {
-                out.push(lift_at(m, k as f64 * TAU / FOCUS_THETAS as f64));
-            }
-        }
-    }
-    out
-}
-
 /// Interior meridian points with their clearance from the approximating chain, best first.
 fn core_meridian_points(tree: &QueryTree) -> Vec<(Point2<f64>, f64)> {
     let Some(root) = tree.nodes.get(tree.root as usize) else {
@@ -115,8 +98,7 @@ fn core_meridian_points(tree: &QueryTree) -> Vec<(Point2<f64>, f64)> {
 
 /// The meridian point `m` lifted at revolution angle `theta` (tree frame).
 fn lift_at(m: Point2<f64>, theta: f64) -> Point3<f64> {
-    let (s, c) = theta.sin_cos();
-    Point3::new(m.x * c, m.x * s, m.y)
+    lift(m, &e_rho(theta))
 }
 
 fn thetas() -> impl Iterator<Item = f64> {
@@ -137,18 +119,9 @@ fn overlap_point(
     slack: f64,
 ) -> Option<Point3<f64>> {
     let threshold = e_outer + e_inner + slack;
-    let deep = |x: Point3<f64>| {
-        let c = point_in_solid(outer, &x);
-        c.inside && c.margin > threshold
-    };
-    let focused = focus
-        .map(|leaf| leaf_samples(inner, leaf))
-        .unwrap_or_default();
-    if let Some(x) = focused.iter().map(|x| pos * x).find(|x| deep(*x)) {
-        return Some(x);
-    }
+    let deep = |x: Point3<f64>| signed_depth(outer, &x) > threshold;
     if let Some(leaf) = focus {
-        if let Some(x) = ascend_depth(outer, inner, pos, leaf, witness, threshold) {
+        if let Some(x) = search_leaf(outer, inner, pos, leaf, witness, threshold) {
             return Some(x);
         }
     }
@@ -185,15 +158,17 @@ fn signed_depth(outer: &QueryTree, x: &Point3<f64>) -> f64 {
     }
 }
 
-/// Pattern-search iterations of [`ascend_depth`].
+/// Pattern-search iterations of [`search_leaf`]'s ascent.
 const ASCENT_ITERS: usize = 400;
 
-/// Local ascent of the signed depth in `outer` over the patches of `inner`'s leaf `leaf`,
-/// from the surface point nearest `witness` (inner's frame) and from the leaf's deepest
-/// sample: where the surfaces cross, the cap of one solid inside the other may be narrower
-/// than any fixed sampling, and its deepest point is a local maximum of the depth. Returns
-/// a point (outer's frame) deeper than `threshold`, the same certificate as a sample.
-fn ascend_depth(
+/// Searches the patches of `inner`'s leaf `leaf` (where the traversal found the surfaces
+/// meeting: a penetration, if any, is nearby) for a point deeper in `outer` than
+/// `threshold`: first a dense grid of samples, then a local ascent of the signed depth from
+/// the surface point nearest `witness` (inner's frame) and from the deepest grid sample.
+/// Where the surfaces cross, the cap of one solid inside the other may be narrower than any
+/// fixed sampling, and its deepest point is a local maximum of the depth. Returns the point
+/// in outer's frame: the same certificate as any sample.
+fn search_leaf(
     outer: &QueryTree,
     inner: &QueryTree,
     pos: &Isometry3<f64>,
@@ -205,8 +180,24 @@ fn ascend_depth(
     let patches = &inner.patches[n.patch_start as usize..n.patch_end as usize];
     let point = |k: usize, s: f64, th: f64| pos * lift_at(patches[k].arc.point_at(s), th);
     let depth = |k: usize, s: f64, th: f64| signed_depth(outer, &point(k, s, th));
-    // Starts: the patch parameter nearest the witness, and the deepest focus sample.
+    // The grid, evaluated once: a deep sample certifies at once, the deepest seeds an ascent.
     let mut starts: Vec<(usize, f64, f64)> = Vec::new();
+    let mut best_sample = (f64::NEG_INFINITY, 0, 0.0, 0.0);
+    for k in 0..patches.len() {
+        for i in 0..FOCUS_PARAMS {
+            let s = i as f64 / (FOCUS_PARAMS - 1) as f64;
+            for j in 0..FOCUS_THETAS {
+                let th = j as f64 * TAU / FOCUS_THETAS as f64;
+                let d = depth(k, s, th);
+                if d > threshold {
+                    return Some(point(k, s, th));
+                }
+                if d > best_sample.0 {
+                    best_sample = (d, k, s, th);
+                }
+            }
+        }
+    }
     if let Some(w) = witness {
         let th = w.y.atan2(w.x);
         let m = Point2::new(w.x.hypot(w.y), w.z);
@@ -222,19 +213,6 @@ fn ascend_depth(
         }
         if best.0.is_finite() {
             starts.push((best.1, best.2, th));
-        }
-    }
-    let mut best_sample = (f64::NEG_INFINITY, 0, 0.0, 0.0);
-    for k in 0..patches.len() {
-        for i in 0..FOCUS_PARAMS {
-            let s = i as f64 / (FOCUS_PARAMS - 1) as f64;
-            for j in 0..FOCUS_THETAS {
-                let th = j as f64 * TAU / FOCUS_THETAS as f64;
-                let d = depth(k, s, th);
-                if d > best_sample.0 {
-                    best_sample = (d, k, s, th);
-                }
-            }
         }
     }
     if best_sample.0.is_finite() {

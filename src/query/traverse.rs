@@ -248,6 +248,18 @@ pub(crate) fn leaf_pair(
     r
 }
 
+/// The two child pairs of the node pair `(a, b)` (not both leaves): the node with the larger
+/// disk is split, a leaf never.
+fn child_pairs(ta: &QueryTree, tb: &QueryTree, a: u32, b: u32) -> [(u32, u32); 2] {
+    let (na, nb) = (&ta.nodes[a as usize], &tb.nodes[b as usize]);
+    let split_a = !na.is_leaf() && (nb.is_leaf() || na.bound.radius >= nb.bound.radius);
+    if split_a {
+        [(na.children[0], b), (na.children[1], b)]
+    } else {
+        [(a, nb.children[0]), (a, nb.children[1])]
+    }
+}
+
 /// Options of the traversal.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TraversalOptions {
@@ -404,13 +416,7 @@ pub fn traverse(
             }
             continue;
         }
-        let split_a = !na.is_leaf() && (nb.is_leaf() || na.bound.radius >= nb.bound.radius);
-        let pairs = if split_a {
-            [(na.children[0], e.b), (na.children[1], e.b)]
-        } else {
-            [(e.a, nb.children[0]), (e.a, nb.children[1])]
-        };
-        for (a, b) in pairs {
+        for (a, b) in child_pairs(ta, tb, e.a, e.b) {
             stats.bound_tests += 1;
             let prune_at = out.upper - tol;
             let key = e.key.max(node_pair_bound(
@@ -443,12 +449,7 @@ pub fn traverse(
             if na.is_leaf() && nb.is_leaf() {
                 break;
             }
-            let split_a = !na.is_leaf() && (nb.is_leaf() || na.bound.radius >= nb.bound.radius);
-            let pairs = if split_a {
-                [(na.children[0], b), (na.children[1], b)]
-            } else {
-                [(a, nb.children[0]), (a, nb.children[1])]
-            };
+            let pairs = child_pairs(ta, tb, a, b);
             let mut bound = |(x, y): (u32, u32)| {
                 stats.bound_tests += 1;
                 node_pair_bound(

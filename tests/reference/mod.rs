@@ -341,6 +341,13 @@ pub fn closest_point(prof: &RefProfile, x: &Point3<f64>) -> Point3<f64> {
 /// by rounding (1e-12 of the scene, far below the smallest gap tested, 1e-9).
 pub const ROUNDING: f64 = 1e-12;
 
+/// Whether `d`'s interval holds the reference distance `r`: `lower <= r` up to [`ROUNDING`]
+/// (the reference is realised, never below the truth), `r <= upper` up to
+/// [`REFERENCE_ERROR`].
+pub fn brackets(d: &Distance, r: f64) -> bool {
+    d.lower <= r + ROUNDING && r <= d.upper + REFERENCE_ERROR
+}
+
 /// Query `a` against `b` with default options and compare with the reference:
 /// `lower <= reference` up to [`ROUNDING`] only (the reference is an upper estimate of the
 /// truth), `reference <= upper` and `|value - reference| <= upper - lower` up to
