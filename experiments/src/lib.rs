@@ -1,5 +1,7 @@
 //! Shared pieces of the research drivers (the binaries under `src/bin/`).
 
+pub mod poses;
+
 use nalgebra::{UnitQuaternion, Vector3};
 
 /// SplitMix64: a tiny deterministic generator, so runs are reproducible without a crate.

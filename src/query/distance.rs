@@ -18,12 +18,36 @@ use super::tree::QueryTree;
 use crate::solid::Solid;
 use nalgebra::{Isometry3, Point3};
 
+/// How wide the certified interval `upper - lower` may be when the query stops.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Tolerance {
+    /// The accuracy the trees were built for: `upper - lower <= eps_a + eps_b`, the
+    /// trees' requested bounds ([`QueryTree::target_eps`]). Then `|value - distance| <= eps_a + eps_b`, the error bound a distance between
+    /// two meshes of Hausdorff error `eps_a` and `eps_b` has.
+    #[default]
+    Trees,
+    /// `upper - lower <= T` (absolute, length units); `0` runs until nothing can be
+    /// narrowed further.
+    Absolute(f64),
+}
+
+impl Tolerance {
+    /// The absolute width for trees of bounds `eps_a`, `eps_b`.
+    pub fn width(self, eps_a: f64, eps_b: f64) -> f64 {
+        match self {
+            Tolerance::Trees => eps_a + eps_b,
+            Tolerance::Absolute(t) => t.max(0.0),
+        }
+    }
+}
+
 /// What the caller asks of a query.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QueryOptions {
-    /// Target gap `upper - lower` (the trees' eps limit what is reachable: a leaf pair
-    /// cannot be resolved below `2 (eps_a + eps_b)`).
-    pub tolerance: f64,
+    /// When to stop ([`Tolerance`]). The trees' eps limit what is reachable: a leaf pair's
+    /// own interval is `2 (e_a + e_b)` wide, `e` the leaves' eps, so a query stops at the
+    /// requested width or at the narrowest interval its leaves allow, whichever is wider.
+    pub tolerance: Tolerance,
     /// Anytime budget.
     pub budget: Budget,
     /// Node-pair bound used for inner nodes.
@@ -35,7 +59,7 @@ pub struct QueryOptions {
 impl Default for QueryOptions {
     fn default() -> Self {
         QueryOptions {
-            tolerance: 0.0,
+            tolerance: Tolerance::Trees,
             budget: Budget::default(),
             bound: BoundKind::default(),
             refine: false,
@@ -190,7 +214,7 @@ pub fn distance_cached(
 fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
     let pos_ab = a.relative_pose(b);
     let topts = TraversalOptions {
-        tolerance: opts.tolerance,
+        tolerance: opts.tolerance.width(a.tree.target_eps, b.tree.target_eps),
         budget: opts.budget,
         bound: opts.bound,
     };

@@ -20,9 +20,11 @@ pub mod certify;
 pub mod containment;
 pub mod distance;
 pub mod gauss;
+pub mod leaf;
 pub mod line_field;
 pub mod overlap;
 pub mod patch;
+pub mod patch_bound;
 pub mod patch_distance;
 pub mod planar;
 pub mod refine;
@@ -32,7 +34,7 @@ pub mod tree;
 
 pub use distance::{
     distance, distance_cached, try_distance, try_distance_cached, Distance, QueryCache, QueryError,
-    QueryOptions,
+    QueryOptions, Tolerance,
 };
 pub use patch::{Patch, ProfileArc};
 pub use patch_distance::{patch_distance, PatchDistance};

@@ -42,10 +42,12 @@
 //! has both points inside the other solid, which the caller (who knows the solids) tests.
 
 use super::binormal_kernel::{circle_torus_critical, interior_torus_torus, parallel_pair_closest};
+use super::bounds::{node_pair_bound, BoundKind};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
 use super::sweep::{critical_angles, level_angles, level_crossings, ParamCircle, RadialField};
+use super::tree::Disk;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
 use std::collections::HashMap;
 
@@ -229,15 +231,25 @@ pub fn patch_distance_memo(
                 closest(|emit| boundary_vs_patch(e, b, &pos_ba, opts.kernel, emit))
             }
         };
+        // A parallel whose cheap lower bound already reaches the best candidate cannot
+        // lower the minimum (nor cross the patch, the bound being positive): no solve.
+        let bounded_away = || {
+            let (o, pos_og) = if of_b { (a, *pos_ab) } else { (b, pos_ba) };
+            let lower = parallel_lower_bound(e, o, &pos_og, best.d);
+            lower > 0.0 && lower >= best.d
+        };
         let found = match memo.as_mut() {
             Some(m) => {
                 let (rb, zb) = bits(e);
                 let other = if of_b { m.index_a } else { m.index_b };
-                *m.memo
-                    .circle_patch
-                    .entry((of_b, rb, zb, other))
-                    .or_insert_with(compute)
+                let key = (of_b, rb, zb, other);
+                match m.memo.circle_patch.get(&key) {
+                    Some(f) => *f,
+                    None if bounded_away() => continue,
+                    None => *m.memo.circle_patch.entry(key).or_insert_with(compute),
+                }
             }
+            None if bounded_away() => continue,
             None => compute(),
         };
         sampled |= found.1;
@@ -578,6 +590,42 @@ fn surface_normal(o: &Patch, f: &Point3<f64>) -> Vector3<f64> {
     };
     let n2 = o.planar_normal(Point2::new(rho, f.z));
     e * n2.x + Vector3::z() * n2.y
+}
+
+/// A lower bound of the distance from the boundary parallel `e` (frame G, placed in O's
+/// frame by `pos_og`) to the patch `o`, from circle/circle minima only: the parallel against
+/// the solid torus of the disk around `o`'s piece and, for an arc, of the arc's own circle
+/// (both contain the patch; [`super::bounds`] and [`super::patch_bound`] give the proofs).
+/// Returns early once a bound reaches `enough`. A parallel that is a point gets no bound
+/// (its exact distance is cheaper).
+fn parallel_lower_bound(e: Point2<f64>, o: &Patch, pos_og: &Isometry3<f64>, enough: f64) -> f64 {
+    if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
+        return f64::NEG_INFINITY;
+    }
+    let parallel = Disk {
+        center: e,
+        radius: 0.0,
+    };
+    let around = node_pair_bound(
+        &Disk::around(&o.arc),
+        &parallel,
+        pos_og,
+        BoundKind::Torus,
+        enough,
+    );
+    match o.arc {
+        ProfileArc::Arc { center, radius, .. } if around < enough => {
+            let tube = Disk { center, radius };
+            around.max(node_pair_bound(
+                &tube,
+                &parallel,
+                pos_og,
+                BoundKind::Torus,
+                enough,
+            ))
+        }
+        _ => around,
+    }
 }
 
 /// The boundary parallel `e` (meridian coordinates of frame G) against patch `o` (frame O);

@@ -123,6 +123,10 @@ pub struct QueryTree {
     pub kind: ProfileKind,
     /// Largest leaf eps.
     pub eps: f64,
+    /// The bound the tree was asked for (a biarc tree's build eps; [`QueryTree::eps`] for
+    /// trees built from leaves). `eps <= target_eps`. The default query tolerance
+    /// ([`super::Tolerance::Trees`]) is the sum of both trees' `target_eps`.
+    pub target_eps: f64,
     /// First and last chain point under each node (`None` for nodes without pieces), when
     /// the leaves' pieces are consecutive runs of [`QueryTree::chain`] in order and join up
     /// (checked by [`QueryTree::index_chain`]); empty otherwise. Point-in-solid tests use it
@@ -146,8 +150,10 @@ impl QueryTree {
                 .collect(),
             kind,
             eps: leaves.iter().map(|l| l.eps).fold(0.0, f64::max),
+            target_eps: 0.0,
             node_ends: Vec::new(),
         };
+        t.target_eps = t.eps;
         if !leaves.is_empty() {
             t.root = t.build(&leaves);
         }
@@ -208,6 +214,7 @@ impl QueryTree {
                 .collect(),
             kind,
             eps: 0.0,
+            target_eps: 0.0,
             node_ends: Vec::new(),
         };
         let roots: Vec<u32> = bt
@@ -221,6 +228,7 @@ impl QueryTree {
             .filter(|n| n.is_leaf())
             .map(|n| n.eps)
             .fold(0.0, f64::max);
+        t.target_eps = t.eps.max(bt.eps());
         if !roots.is_empty() {
             t.root = t.build_upper(&roots);
         }

@@ -70,9 +70,9 @@ enum Command {
         pose_b: String,
         #[arg(long, default_value_t = 1e-4)]
         eps: f64,
-        /// Target width of the query's interval.
-        #[arg(long, default_value_t = 0.0)]
-        tolerance: f64,
+        /// Target width of the query's interval (default: the trees' accuracy).
+        #[arg(long)]
+        tolerance: Option<f64>,
         /// Refine the query's witnesses on the exact surfaces.
         #[arg(long)]
         refine: bool,
@@ -195,7 +195,7 @@ fn oracle_command(
     b: &str,
     pose: &str,
     eps: f64,
-    tolerance: f64,
+    tolerance: Option<f64>,
     refine: bool,
 ) -> Result<(), String> {
     let (pa, pb) = (load(a)?, load(b)?);

@@ -21,7 +21,7 @@ use crate::oracle::{OracleResult, PlanarIndex};
 use crate::random_profiles::{random_profile, to_toml, SplitMix64};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
-use revdist::query::{distance, Distance, QueryOptions};
+use revdist::query::{distance, Distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -146,8 +146,9 @@ pub struct Case {
     pub b: usize,
     pub pose: PoseSpec,
     pub eps: f64,
-    /// Query options beyond the defaults: target interval width and witness refinement.
-    pub tolerance: f64,
+    /// Query options beyond the defaults: target interval width (`None`: the default, the
+    /// trees' own accuracy, [`revdist::query::Tolerance::Trees`]) and witness refinement.
+    pub tolerance: Option<f64>,
     pub refine: bool,
     /// What the placement aimed at.
     pub note: String,
@@ -600,11 +601,15 @@ fn interior_point(rng: &mut SplitMix64, a: &Shape, depth: f64) -> Option<Vector3
 pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64]) -> Case {
     let mut rng = SplitMix64(seed).fork(0xCA5E_0000 + id as u64);
     let eps = eps_list[rng.int(0, eps_list.len() - 1)];
-    // Most queries run with the defaults; some ask for a tolerance or refined witnesses.
-    let tolerance = if rng.chance(0.15) {
-        rng.log_range(1e-4, 1e-1)
+    // Half the queries run with the default tolerance (the trees' accuracy), a third run to
+    // the end (tolerance 0), the rest ask for a coarse tolerance; some refine witnesses.
+    let u = rng.unit();
+    let tolerance = if u < 0.15 {
+        Some(rng.log_range(1e-4, 1e-1))
+    } else if u < 0.5 {
+        Some(0.0)
     } else {
-        0.0
+        None
     };
     let refine = rng.chance(0.15);
     let u = rng.unit();
@@ -755,7 +760,7 @@ pub fn regression_cases(shapes: &[Shape]) -> Vec<Case> {
                 rotation: [1.0, 0.0, 0.0, 0.0],
             },
             eps: 1e-4,
-            tolerance: 0.0,
+            tolerance: Some(0.0),
             refine: false,
             note: "issue 10: truth 1.8478 for morph@0.1".into(),
         });
@@ -770,7 +775,7 @@ pub fn regression_cases(shapes: &[Shape]) -> Vec<Case> {
             rotation: [1.0, 0.0, 0.0, 0.0],
         },
         eps: 1e-3,
-        tolerance: 0.0,
+        tolerance: Some(0.0),
         refine: false,
         note: "issue 10: truth 0.19623".into(),
     });
@@ -792,7 +797,7 @@ pub fn regression_cases(shapes: &[Shape]) -> Vec<Case> {
                 rotation: *r,
             },
             eps: *eps,
-            tolerance: 0.0,
+            tolerance: Some(0.0),
             refine: false,
             note: format!("found earlier: {note}"),
         });
@@ -861,7 +866,7 @@ fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
     let sb = sb.with_pose(pose_b);
     let t0 = Instant::now();
     let qopts = QueryOptions {
-        tolerance: case.tolerance,
+        tolerance: query_tolerance(case.tolerance),
         refine: case.refine,
         ..QueryOptions::default()
     };
@@ -901,7 +906,9 @@ fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
         pose_b: &pose_b,
         eps_a: sa.tree.eps,
         eps_b: sb.tree.eps,
-        tolerance: case.tolerance,
+        tolerance: qopts
+            .tolerance
+            .width(sa.tree.target_eps, sb.tree.target_eps),
         oracle: &o,
         a: ia,
         b: ib,
@@ -1091,8 +1098,8 @@ impl Summary {
     /// Batch JSON line for `revdist distance --batch`.
     pub fn batch_line(&self, c: &Case) -> String {
         let mut extra = String::new();
-        if c.tolerance > 0.0 {
-            write!(extra, ",\"tolerance\":{:?}", c.tolerance).unwrap();
+        if let Some(t) = c.tolerance {
+            write!(extra, ",\"tolerance\":{t:?}").unwrap();
         }
         if c.refine {
             extra.push_str(",\"refine\":true");
@@ -1109,8 +1116,8 @@ impl Summary {
     /// Command line for one case.
     pub fn command_line(&self, c: &Case) -> String {
         let mut extra = String::new();
-        if c.tolerance > 0.0 {
-            write!(extra, " --tolerance {:?}", c.tolerance).unwrap();
+        if let Some(t) = c.tolerance {
+            write!(extra, " --tolerance {t:?}").unwrap();
         }
         if c.refine {
             extra.push_str(" --refine");
@@ -1310,10 +1317,9 @@ impl Summary {
                 self.shapes[r.case.b].name,
                 self.shape_tag(r.case.b),
                 r.case.eps,
-                if r.case.tolerance > 0.0 {
-                    format!(" tolerance {:e}", r.case.tolerance)
-                } else {
-                    String::new()
+                match r.case.tolerance {
+                    Some(t) => format!(" tolerance {t:e}"),
+                    None => String::new(),
                 },
                 if r.case.refine { " refine" } else { "" }
             )
@@ -1363,13 +1369,18 @@ impl NoneOrLess for Option<(f64, &CaseResult, &str)> {
     }
 }
 
+/// The query tolerance of a case: absolute when given, else the trees' accuracy.
+fn query_tolerance(t: Option<f64>) -> Tolerance {
+    t.map_or(Tolerance::Trees, Tolerance::Absolute)
+}
+
 /// A single query checked against the oracle (for the `verify oracle` command).
 pub fn single(
     a: &Profile,
     b: &Profile,
     pose: &PoseSpec,
     eps: f64,
-    tolerance: f64,
+    tolerance: Option<f64>,
     refine: bool,
 ) -> Result<
     (
@@ -1386,7 +1397,7 @@ pub fn single(
         .map_err(|e| e.to_string())?
         .with_pose(pose.isometry());
     let qopts = QueryOptions {
-        tolerance,
+        tolerance: query_tolerance(tolerance),
         refine,
         ..QueryOptions::default()
     };
@@ -1411,7 +1422,9 @@ pub fn single(
         pose_b: &iso,
         eps_a: sa.tree.eps,
         eps_b: sb.tree.eps,
-        tolerance,
+        tolerance: qopts
+            .tolerance
+            .width(sa.tree.target_eps, sb.tree.target_eps),
         oracle: &o,
         a: &ia,
         b: &ib,

@@ -12,7 +12,9 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use revdist::models::model;
 use revdist::profile::Profile;
 use revdist::profile_file::from_toml_str;
-use revdist::query::{distance, distance_cached, Budget, Distance, QueryCache, QueryOptions};
+use revdist::query::{
+    distance, distance_cached, Budget, Distance, QueryCache, QueryOptions, Tolerance,
+};
 use revdist::solid::Solid;
 use std::sync::Arc;
 use verify::oracle::{
@@ -81,7 +83,8 @@ fn verdict_on(sa: &Solid, sb: &Solid, d: Distance, label: &str, which: &[Check])
         pose_b: &sb.pose,
         eps_a: sa.tree.eps,
         eps_b: sb.tree.eps,
-        tolerance: 0.0,
+        // Every query here runs at the default tolerance.
+        tolerance: Tolerance::Trees.width(sa.tree.target_eps, sb.tree.target_eps),
         oracle: &o,
         a: &ia,
         b: &ib,

@@ -32,7 +32,7 @@ proptest! {
             translation: [t.x, t.y, t.z],
             rotation: [r.w, r.i, r.j, r.k],
         };
-        let (d, _, v, _, _) = single(&a, &b, &pose, eps, 0.0, false).expect("every valid profile builds");
+        let (d, _, v, _, _) = single(&a, &b, &pose, eps, None, false).expect("every valid profile builds");
         prop_assert!(
             v.is_empty(),
             "{:?}\nanswer {:?}\nA:\n{}\nB:\n{}",

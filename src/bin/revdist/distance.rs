@@ -10,7 +10,7 @@ use std::io::{BufRead, Write};
 use std::sync::Arc;
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
-use revdist::query::{try_distance, Budget, Distance, QueryOptions};
+use revdist::query::{try_distance, Budget, Distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use serde::{Deserialize, Serialize};
 
@@ -35,9 +35,10 @@ pub struct Args {
     /// Approximation bound of the biarc trees.
     #[arg(long, default_value_t = DEFAULT_EPS)]
     eps: f64,
-    /// Target width of the certified interval (upper - lower).
-    #[arg(long, default_value_t = 0.0)]
-    tolerance: f64,
+    /// Target width of the certified interval (upper - lower); default: the trees' own
+    /// accuracy, eps_A + eps_B. 0 runs until nothing can be narrowed.
+    #[arg(long)]
+    tolerance: Option<f64>,
     /// Refine the witness points on the exact NURBS surfaces.
     #[arg(long)]
     refine: bool,
@@ -175,7 +176,13 @@ impl SolidCache {
 }
 
 pub fn run(args: Args) -> CmdResult {
-    check_tolerance(args.tolerance)?;
+    let tolerance = match args.tolerance {
+        Some(t) => {
+            check_tolerance(t)?;
+            Tolerance::Absolute(t)
+        }
+        None => Tolerance::Trees,
+    };
     let max_time = match args.max_time_ms {
         Some(ms) if ms.is_finite() && ms > 0.0 => {
             Some(std::time::Duration::from_secs_f64(ms / 1e3))
@@ -184,7 +191,7 @@ pub fn run(args: Args) -> CmdResult {
         None => None,
     };
     let opts = QueryOptions {
-        tolerance: args.tolerance,
+        tolerance,
         budget: Budget {
             max_node_pairs: args.max_node_pairs,
             max_time,
@@ -249,7 +256,7 @@ fn run_line(
     let mut opts = *opts;
     if let Some(t) = req.tolerance {
         check_tolerance(t)?;
-        opts.tolerance = t;
+        opts.tolerance = Tolerance::Absolute(t);
     }
     if let Some(r) = req.refine {
         opts.refine = r;

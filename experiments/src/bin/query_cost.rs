@@ -1,0 +1,117 @@
+//! Where a distance query spends its time (issue 11): per model pair and eps, over seeded
+//! poses near contact (gaps log-uniform in [1e-3, 1e-1]), the median query time and the
+//! traversal counters.
+//!
+//! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]`.
+
+use experiments::poses::{log_uniform, pose_at_gap};
+use experiments::SplitMix;
+use revdist::models;
+use revdist::query::{distance, QueryOptions};
+use revdist::solid::Solid;
+use std::sync::Arc;
+use std::time::Instant;
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn profile(name: &str) -> Result<revdist::profile::Profile, Box<dyn std::error::Error>> {
+    if name == "torus" {
+        // R 1, r 0.25 (the issue's torus).
+        use revdist::models::primitives::{arc, deg};
+        let p = revdist::profile::Profile::new(
+            "torus",
+            vec![arc([1.0, 0.0], 0.25, deg(-90.0), deg(270.0))?],
+        )?;
+        return Ok(p);
+    }
+    Ok(models::model(name)?)
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut poses = 300usize;
+    let mut eps_list = vec![];
+    let mut pairs = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill".to_string();
+    let mut tol_mode = "trees".to_string();
+    let mut repeat = 1usize;
+    let mut i = 0;
+    while i < args.len() {
+        match args[i].as_str() {
+            "--poses" => poses = args[i + 1].parse()?,
+            "--eps" => eps_list.push(args[i + 1].parse::<f64>()?),
+            "--pairs" => pairs = args[i + 1].clone(),
+            "--tolerance" => tol_mode = args[i + 1].clone(),
+            "--repeat" => repeat = args[i + 1].parse()?,
+            o => return Err(format!("unknown argument {o}").into()),
+        }
+        i += 2;
+    }
+    if eps_list.is_empty() {
+        eps_list = vec![1e-3, 1e-4, 1e-5];
+    }
+    println!("| pair | eps | median us | p90 us | node pairs | bound tests | leaf bounds | exact leaves | patch bounds | exact patches | subdivided | max width |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    for &eps in &eps_list {
+        for pair in pairs.split(',') {
+            let (na, nb) = pair.split_once('-').ok_or("pair a-b")?;
+            let (pa, pb) = (profile(na)?, profile(nb)?);
+            let centre = |p: &revdist::profile::Profile| {
+                let b = p.bounding_box();
+                let zc = 0.5 * (b.min.y + b.max.y);
+                let h = 0.5 * (b.max.y - b.min.y);
+                (zc, (b.max.x * b.max.x + h * h).sqrt())
+            };
+            let ((za, ra), (zb, rb)) = (centre(&pa), centre(&pb));
+            let sa = Solid::from_profile(Arc::new(pa), eps)?;
+            let sb = Solid::from_profile(Arc::new(pb), eps)?;
+            let mut rng = SplitMix(0x11_2026 ^ pair.len() as u64);
+            let mut placed = Vec::new();
+            while placed.len() < poses {
+                let gap = log_uniform(&mut rng, 1e-3, 1e-1);
+                if let Some(p) = pose_at_gap(&sa, &sb, (za, zb), ra + rb, gap, &mut rng) {
+                    placed.push(sb.with_pose(p));
+                }
+            }
+            let tolerance = match tol_mode.as_str() {
+                "trees" => revdist::query::Tolerance::Trees,
+                t => revdist::query::Tolerance::Absolute(t.parse()?),
+            };
+            let opts = QueryOptions {
+                tolerance,
+                ..QueryOptions::default()
+            };
+            let mut times = Vec::new();
+            let (mut np, mut lt, mut pt, mut sd, mut w) = (0.0, 0.0, 0.0, 0.0, 0.0f64);
+            let (mut bt, mut lb, mut pb) = (0.0, 0.0, 0.0);
+            for _ in 1..repeat {
+                for b in &placed {
+                    std::hint::black_box(distance(&sa, b, &opts));
+                }
+            }
+            for b in &placed {
+                let t0 = Instant::now();
+                let d = distance(&sa, b, &opts);
+                times.push(t0.elapsed().as_secs_f64() * 1e6);
+                np += d.stats.node_pairs as f64;
+                bt += d.stats.bound_tests as f64;
+                lb += d.stats.leaf_bounds as f64;
+                pb += d.stats.patch_bounds as f64;
+                lt += d.stats.leaf_tests as f64;
+                pt += d.stats.patch_tests as f64;
+                sd += d.stats.subdivided_pairs as f64;
+                w = w.max(d.upper - d.lower);
+            }
+            let n = placed.len() as f64;
+            let med = median(&mut times);
+            let p90 = times[(0.9 * (n - 1.0)) as usize];
+            println!(
+                "| {pair} | {eps:.0e} | {med:.1} | {p90:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {w:.2e} |",
+                np / n, bt / n, lb / n, lt / n, pb / n, pt / n, sd / n
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,261 @@
+//! A leaf pair in two stages (issue 11; the cost model in [`super`]).
+//!
+//! * **Stage 1, bounds** ([`LeafPair::bounds`]): for every patch pair of the two leaves, the
+//!   cheap lower bound and realised upper bound of [`super::patch_bound`] (one circle/circle
+//!   minimum each). When every pair is *settled* (its upper bound is within
+//!   [`SETTLE_REL`] of its lower bound, or its lower bound already reaches the caller's
+//!   pruning level) the leaf pair is done: the interval is as tight as an exact solve would
+//!   make it.
+//! * **Stage 2, exact** ([`LeafPair::exact`]): the exact patch distance of
+//!   [`super::patch_distance`] for the pairs stage 1 could not settle, with interpenetration
+//!   checks of the interior common normals. The traversal asks for it only when the leaf
+//!   pair is still the one that holds the query's lower bound.
+//!
+//! Patch pairs whose bounds do not prove them disjoint (lower bound `<= 0`) may intersect;
+//! their leaf pair always goes to stage 2, which looks for crossings and interpenetration.
+
+use super::certify::{patch_lower_bound, CERTIFY_MAX_PAIRS};
+use super::containment::point_in_solid;
+use super::patch::Patch;
+use super::patch_bound::{patch_bounds, patch_lower, CoreMemo, PatchBounds};
+use super::patch_distance::{patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions};
+use super::tree::QueryTree;
+use nalgebra::{Isometry3, Point2, Point3, Vector3};
+
+/// A patch pair is settled by stage 1 when its realised upper bound exceeds its lower bound
+/// by at most this fraction of the configuration scale: an exact solve could not narrow it
+/// by more than the query's own rounding slack ([`super::distance::POSE_SLACK_REL`] is
+/// `2e-11`; the lower bound already carries [`super::bounds::BOUND_SLACK`]).
+pub const SETTLE_REL: f64 = 1e-10;
+
+/// What a leaf pair evaluation found.
+pub(crate) struct LeafResult {
+    /// A rigorous lower bound of the leaves' patch distance.
+    pub lower: f64,
+    /// A realised upper bound: the distance between `pa` and `pb`, two points on the
+    /// leaves' patches (infinite when every patch pair was pruned on its bound).
+    pub d: f64,
+    pub pa: Point3<f64>,
+    pub pb: Point3<f64>,
+    /// The interval `[lower, d]` cannot be narrowed by an exact solve (every patch pair was
+    /// solved exactly, settled, or pruned).
+    pub complete: bool,
+    /// Deepest verified interpenetration (stage 2 only).
+    pub penetration: Option<(Point3<f64>, Point3<f64>, f64)>,
+    /// Patch pairs given stage-1 bounds.
+    pub patch_bounds: usize,
+    /// Patch pairs solved exactly.
+    pub patch_tests: usize,
+    pub subdivided_pairs: usize,
+}
+
+impl LeafResult {
+    fn empty() -> Self {
+        LeafResult {
+            lower: f64::INFINITY,
+            d: f64::INFINITY,
+            pa: Point3::origin(),
+            pb: Point3::origin(),
+            complete: true,
+            penetration: None,
+            patch_bounds: 0,
+            patch_tests: 0,
+            subdivided_pairs: 0,
+        }
+    }
+
+    fn offer(&mut self, d: f64, pa: Point3<f64>, pb: Point3<f64>) {
+        if d < self.d {
+            self.d = d;
+            self.pa = pa;
+            self.pb = pb;
+        }
+    }
+}
+
+/// Two trees at one relative pose: the context every leaf pair of a query shares.
+pub(crate) struct LeafPair<'q> {
+    pub ta: &'q QueryTree,
+    pub tb: &'q QueryTree,
+    pub pos_ab: &'q Isometry3<f64>,
+    pub pos_ba: Isometry3<f64>,
+    orient_a: f64,
+    orient_b: f64,
+    /// Absolute settle threshold ([`SETTLE_REL`] times the configuration scale).
+    settle: f64,
+    memo: BoundaryMemo,
+    cores: CoreMemo,
+}
+
+/// Outward unit normal (3-D, tree frame) of a patch at its surface point `x`.
+fn outward(tree: &QueryTree, patch: &Patch, orient: f64, x: &Point3<f64>) -> Vector3<f64> {
+    let rho = x.x.hypot(x.y);
+    let e = if rho > 0.0 {
+        Vector3::new(x.x / rho, x.y / rho, 0.0)
+    } else {
+        Vector3::x()
+    };
+    let n = tree.outward_normal(&patch.arc, Point2::new(rho, x.z), orient);
+    e * n.x + Vector3::z() * n.y
+}
+
+impl<'q> LeafPair<'q> {
+    pub fn new(ta: &'q QueryTree, tb: &'q QueryTree, pos_ab: &'q Isometry3<f64>) -> Self {
+        let size = |t: &QueryTree| {
+            t.nodes
+                .get(t.root as usize)
+                .map_or(0.0, |n| n.bound.center.coords.norm() + n.bound.radius)
+        };
+        let scale = 1.0 + pos_ab.translation.vector.norm() + size(ta) + size(tb);
+        LeafPair {
+            ta,
+            tb,
+            pos_ab,
+            pos_ba: pos_ab.inverse(),
+            orient_a: ta.orientation(),
+            orient_b: tb.orientation(),
+            settle: SETTLE_REL * scale,
+            memo: BoundaryMemo::default(),
+            cores: CoreMemo::default(),
+        }
+    }
+
+    fn patch_ranges(&self, na: u32, nb: u32) -> impl Iterator<Item = (u32, u32)> {
+        let (la, lb) = (&self.ta.nodes[na as usize], &self.tb.nodes[nb as usize]);
+        let rb = lb.patch_start..lb.patch_end;
+        (la.patch_start..la.patch_end).flat_map(move |ia| rb.clone().map(move |ib| (ia, ib)))
+    }
+
+    fn patches(&self, ia: u32, ib: u32) -> (&'q Patch, &'q Patch) {
+        (&self.ta.patches[ia as usize], &self.tb.patches[ib as usize])
+    }
+
+    /// Stage 1: bounds of every patch pair. Pairs whose lower bound reaches `prune_at`
+    /// contribute only that bound. Returns `None` when some pair may intersect (lower bound
+    /// `<= 0`): then only [`LeafPair::exact`] can decide.
+    pub fn bounds(&mut self, na: u32, nb: u32, prune_at: f64) -> Option<LeafResult> {
+        let mut r = LeafResult::empty();
+        for (ia, ib) in self.patch_ranges(na, nb) {
+            let (pa, pb) = self.patches(ia, ib);
+            r.patch_bounds += 1;
+            let lower = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores);
+            if lower <= 0.0 {
+                return None;
+            }
+            if lower >= prune_at {
+                r.lower = r.lower.min(lower);
+                continue;
+            }
+            let b = patch_bounds(pa, pb, self.pos_ab, &mut self.cores);
+            r.lower = r.lower.min(b.lower);
+            r.offer(b.upper, b.point_a, b.point_b);
+            if !self.settled(&b) {
+                r.complete = false;
+            }
+        }
+        Some(r)
+    }
+
+    fn settled(&self, b: &PatchBounds) -> bool {
+        b.lower > 0.0 && b.upper - b.lower <= self.settle
+    }
+
+    /// Stage 2: the exact distance between the leaves' patches (pairs settled by their
+    /// bounds are not solved again), with interpenetration checks of the interior common
+    /// normals; `prune_at` as in [`LeafPair::bounds`].
+    pub fn exact(&mut self, na: u32, nb: u32, prune_at: f64) -> LeafResult {
+        let (la, lb) = (&self.ta.nodes[na as usize], &self.tb.nodes[nb as usize]);
+        let mut r = LeafResult::empty();
+        // Cheap lower bounds first, smallest first: a pair whose bound is positive and not
+        // below the best distance so far can neither lower the minimum nor interpenetrate.
+        let mut order: Vec<(f64, u32, u32)> = Vec::with_capacity(4);
+        for (ia, ib) in self.patch_ranges(na, nb) {
+            let (pa, pb) = self.patches(ia, ib);
+            let lower = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores);
+            order.push((lower, ia, ib));
+        }
+        r.patch_bounds += order.len();
+        order.sort_by(|x, y| x.0.total_cmp(&y.0));
+        // Subdivision precision for sampled patch pairs: the leaves' eps (a lower bound that
+        // close costs no accuracy the leaves have), but not below rounding of the pose.
+        let precision = (la.eps + lb.eps).max(1e-9 * (1.0 + self.pos_ab.translation.vector.norm()));
+        for (bound, ia, ib) in order {
+            if bound > 0.0 && (bound >= r.d || bound >= prune_at) {
+                r.lower = r.lower.min(bound);
+                continue;
+            }
+            let (pa, pb) = self.patches(ia, ib);
+            if bound > 0.0 {
+                let b = patch_bounds(pa, pb, self.pos_ab, &mut self.cores);
+                if self.settled(&b) {
+                    r.lower = r.lower.min(b.lower);
+                    r.offer(b.upper, b.point_a, b.point_b);
+                    continue;
+                }
+            }
+            r.patch_tests += 1;
+            let slot = MemoSlot {
+                memo: &mut self.memo,
+                index_a: ia,
+                index_b: ib,
+            };
+            // A positive lower bound proves the patches disjoint: no crossing scan.
+            let popts = PatchOptions {
+                may_intersect: bound <= 0.0,
+                ..PatchOptions::default()
+            };
+            let pd = patch_distance_memo(pa, pb, self.pos_ab, popts, Some(slot));
+            let pair_lower = if pd.sampled {
+                r.subdivided_pairs += 1;
+                patch_lower_bound(
+                    &pa.arc,
+                    &pb.arc,
+                    self.pos_ab,
+                    pd.distance,
+                    precision,
+                    CERTIFY_MAX_PAIRS,
+                )
+            } else {
+                pd.distance
+            };
+            r.lower = r.lower.min(pair_lower);
+            r.offer(pd.distance, pd.point_a, pd.point_b);
+            for (p, q) in &pd.interior_pairs {
+                self.check_interpenetration(pa, pb, p, q, &mut r);
+            }
+        }
+        r
+    }
+
+    /// An interior common normal `(p, q)` (A's frame) whose direction points into both
+    /// patches' solids: the patches may cross in a loop no sampled meridian met, so the
+    /// leaf pair cannot bound the distance above 0; with both ends inside the other solid it
+    /// is a verified interpenetration.
+    fn check_interpenetration(
+        &self,
+        pa: &Patch,
+        pb: &Patch,
+        p: &Point3<f64>,
+        q: &Point3<f64>,
+        r: &mut LeafResult,
+    ) {
+        let w = q - p;
+        let n_a = outward(self.ta, pa, self.orient_a, p);
+        let q_b = self.pos_ba * q;
+        let n_b = self.pos_ab.rotation * outward(self.tb, pb, self.orient_b, &q_b);
+        if n_a.dot(&w) >= 0.0 || n_b.dot(&w) <= 0.0 {
+            return;
+        }
+        let in_a = point_in_solid(self.ta, q);
+        let in_b = point_in_solid(self.tb, &(self.pos_ba * p));
+        if in_a.inside || in_b.inside {
+            r.lower = r.lower.min(0.0);
+        }
+        if in_a.inside && in_b.inside {
+            let m = in_a.margin.min(in_b.margin);
+            if r.penetration.is_none_or(|(_, _, m0)| m > m0) {
+                r.penetration = Some((*p, *q, m));
+            }
+        }
+    }
+}
