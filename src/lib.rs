@@ -20,3 +20,4 @@ pub mod profile_file;
 pub mod query;
 pub mod solid;
 pub mod svg;
+pub mod tessellate;

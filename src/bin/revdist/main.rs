@@ -11,6 +11,7 @@ mod figures;
 mod input;
 mod models;
 mod profile;
+mod tessellate;
 mod tree;
 
 /// Result of a subcommand.
@@ -38,6 +39,8 @@ enum Command {
     Tree(tree::Args),
     /// Minimum distance between two posed solids (one query, or JSON lines with --batch).
     Distance(distance::Args),
+    /// Closed triangle mesh (OBJ or binary STL) within a certified Hausdorff distance eps.
+    Tessellate(tessellate::Args),
 }
 
 fn main() -> ExitCode {
@@ -49,6 +52,7 @@ fn main() -> ExitCode {
         Command::Figures(args) => figures::run(args),
         Command::Tree(args) => tree::run(args),
         Command::Distance(args) => distance::run(args),
+        Command::Tessellate(args) => tessellate::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
