@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian packages revdist's harness needs, only when some are missing.
-# Core library: nothing (pure Rust). verify/: GMP + MPFR for exact arithmetic (rug with system libs).
+# Core library: nothing (pure Rust). verify/: GMP + MPFR for exact arithmetic (rug with system libs),
+# and the C++ baselines bridged with cxx (verify/build.rs, cpp/): FCL 0.7 (pulls in octomap),
+# libccd 2.1, CGAL 5.5 (header-only; pulls in Boost) and Eigen 3.
 # Usage: scripts/deps.sh [extra packages...]
 set -euo pipefail
-packages=(pkg-config m4 libgmp-dev libmpfr-dev "$@")
+packages=(pkg-config m4 libgmp-dev libmpfr-dev libfcl-dev libccd-dev libcgal-dev libeigen3-dev "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,6 @@
 //! Independent checks of revdist: exact arithmetic with rug (GMP/MPFR) and float references.
 
+pub mod baselines;
 pub mod circles;
 pub mod companion;
 pub mod exact_circle;
