@@ -8,7 +8,8 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use revdist::models::model;
-use revdist::query::bounds::BoundKind;
+use revdist::query::bounds::{node_pair_bound, BoundKind};
+use revdist::query::tree::Disk;
 use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use std::hint::black_box;
@@ -176,6 +177,31 @@ fn patch_kernels(c: &mut Criterion) {
             })
         });
     }
+    // Stage 1 of a leaf pair (issue 11): the cheap lower bound and realised upper bound.
+    group.bench_function("stage1_bounds", |bench| {
+        bench.iter(|| {
+            let mut memo = revdist::query::patch_bound::CoreMemo::default();
+            for (a, b, pose) in &cases {
+                black_box(revdist::query::patch_bound::patch_bounds(
+                    a, b, pose, &mut memo,
+                ));
+            }
+        })
+    });
+    // The node-pair bound of the same pairs' disks (spheres, then solid tori).
+    group.bench_function("node_pair_bound", |bench| {
+        bench.iter(|| {
+            for (a, b, pose) in &cases {
+                black_box(node_pair_bound(
+                    &Disk::around(&a.arc),
+                    &Disk::around(&b.arc),
+                    pose,
+                    BoundKind::Torus,
+                    f64::INFINITY,
+                ));
+            }
+        })
+    });
     group.finish();
 }
 

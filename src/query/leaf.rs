@@ -7,7 +7,7 @@
 //!   pruning level) the leaf pair is done: the interval is as tight as an exact solve would
 //!   make it.
 //! * **Stage 2, exact** ([`LeafPair::exact`]): the exact patch distance of
-//!   [`super::patch_distance`] for the pairs stage 1 could not settle, with interpenetration
+//!   [`mod@super::patch_distance`] for the pairs stage 1 could not settle, with interpenetration
 //!   checks of the interior common normals. The traversal asks for it only when the leaf
 //!   pair is still the one that holds the query's lower bound.
 //!
@@ -29,7 +29,7 @@ use nalgebra::{Isometry3, Point2, Point3, Vector3};
 pub const SETTLE_REL: f64 = 1e-10;
 
 /// What a leaf pair evaluation found.
-pub(crate) struct LeafResult {
+pub struct LeafResult {
     /// A rigorous lower bound of the leaves' patch distance.
     pub lower: f64,
     /// A realised upper bound: the distance between `pa` and `pb`, two points on the
@@ -74,7 +74,7 @@ impl LeafResult {
 }
 
 /// Two trees at one relative pose: the context every leaf pair of a query shares.
-pub(crate) struct LeafPair<'q> {
+pub struct LeafPair<'q> {
     pub ta: &'q QueryTree,
     pub tb: &'q QueryTree,
     pub pos_ab: &'q Isometry3<f64>,

@@ -1,19 +1,44 @@
 //! Minimum distance between two posed solids of revolution (Son et al. 2020, sections 3
 //! and 4.2; Johnson and Cohen 1997 for the lower/upper-bound paradigm and anytime queries).
 //!
-//! * [`patch`], [`patch_distance`]: toroidal patches and their exact pairwise distance,
-//!   with the kernels [`planar`] (coaxial case) and [`sweep`] (critical points along a
-//!   circle);
-//! * [`tree`]: the query's view of a solid's bounding hierarchy;
-//! * [`bounds`]: provably valid node-pair lower bounds;
-//! * [`certify`]: subdivision lower bounds for patch pairs whose kernel had to sample (a
-//!   sampled value never resolves a lower bound);
-//! * [`traverse`]: Algorithm 2 (best-first over node pairs) with an anytime budget;
-//! * [`containment`]: point-in-solid tests (solids, not surfaces), through the tree;
-//! * [`overlap`]: certificates of overlap and nesting (points inside both true solids);
-//! * [`refine`]: witness refinement on the exact NURBS surfaces;
-//! * [`distance`]: the query itself, with frame coherence.
+//! # Cost model (issue 11)
+//!
+//! A query is as fast as the number of expensive steps it cannot avoid. It spends, in this
+//! order, and stops as soon as `upper - lower <= tolerance` ([`Tolerance`]; by default the
+//! trees' own accuracy `eps_a + eps_b`):
+//!
+//! | step | where | measured cost (per pair, 2-core EPYC) | what it gives |
+//! | --- | --- | --- | --- |
+//! | node-pair bound | [`bounds`] | 0.1 us (spheres), ~1-3 us with the solid-torus circle minimum | a valid lower bound; prunes most pairs |
+//! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (one circle/circle minimum, or a circle/cone solve) | lower bound and a realised upper bound; settles the pair when they meet |
+//! | leaf stage 2 | [`leaf`], [`mod@patch_distance`] | ~30-300 us per patch pair (degree-8 boundary solves, crossing scan) | the exact patch distance and interpenetration checks |
+//! | boundary pre-bounds | [`mod@patch_distance`] | ~1 us per boundary parallel | skip a degree-8 solve whose parallel cannot beat the best candidate |
+//! | closed forms | [`mod@patch_distance`], [`planar`] | < 1 us | coaxial patches, parallels outside a torus whose closest point is on the patch |
+//!
+//! Costs from `cargo bench --bench query -- patch_distance_64` (64 leaf-sized patch pairs
+//! 1e-4 from contact: `stage1_bounds`, `node_pair_bound`, `binormals_gauss`) and
+//! `cargo bench --bench circle`; counts per query from the `query_cost` experiment
+//! (`TraversalStats`: `bound_tests`, `leaf_bounds`, `leaf_tests`, `patch_bounds`,
+//! `patch_tests`). A leaf pair is measured exactly only when it is popped a second time, i.e.
+//! while its stage-1 lower bound still holds the query's lower bound; on the exact torus
+//! that never happens, on freeform models near contact 2-9 leaf pairs per query still need
+//! it (flat or concave arcs and straight pieces, whose tori or cones give weak bounds).
+//!
+//! # Layout
+//!
+//! * the traversal [`traverse`] only orders and prunes node pairs (Algorithm 2 with an
+//!   anytime budget); [`mod@distance`] adds solid semantics and frame coherence; [`batch`] runs
+//!   independent queries on all cores;
+//! * leaf pairs: [`leaf`] (the two stages), [`patch_bound`] (stage-1 bounds: patch/patch via
+//!   the arcs' tori, torus/cone via the circle/segment distance), [`mod@patch_distance`] (the
+//!   exact kernel), with the circle/patch kernels [`planar`] (coaxial case), [`sweep`]
+//!   (critical points along a circle), [`binormal_kernel`], [`line_field`], [`gauss`], and
+//!   [`certify`] (subdivision lower bounds where a kernel had to sample);
+//! * node bounds [`bounds`] on the query tree [`tree`];
+//! * solids: [`containment`] (point-in-solid through the tree), [`overlap`] (certificates of
+//!   overlap and nesting); [`refine`] (witnesses on the exact NURBS surfaces).
 
+pub mod batch;
 pub mod binormal_kernel;
 pub mod bounds;
 pub mod certify;

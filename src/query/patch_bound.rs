@@ -21,10 +21,10 @@
 //! Cost: one circle/circle minimum ([`crate::circle::min_distance`], under 1 us for circles
 //! in general position) and a few planar closest-point evaluations.
 
-use super::binormal_kernel::parallel_circle;
+use super::binormal_kernel::{as_circle3, parallel_circle};
 use super::bounds::{sphere_bound, torus_bound, BOUND_SLACK};
 use super::line_field::{line_field_critical, line_field_levels};
-use super::patch::{Core, Patch, ProfileArc};
+use super::patch::{Patch, ProfileArc};
 use super::sweep::ParamCircle;
 use super::tree::Disk;
 use crate::circle::min_distance;
@@ -198,13 +198,10 @@ fn arc_tori(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>, memo: &mut CoreMemo) 
     })
 }
 
-/// A toroidal patch against a cone patch (either order): the torus lies within `r` of
-/// its major circle `M`, the cone patch on the revolved full line of its segment (both
-/// mirror branches), so `dist >= min over M of dist(., cone) - r`. Along `M` the distance to
-/// the cone is `min(|F_+|, |F_-|)`, `F_s = s n_rho rho + n_z z - c` ([`super::line_field`]):
-/// zero where `M` crosses the cone (level angles), else smallest at a critical angle. Both
-/// sets of angles are roots of polynomials whose solver keeps every root, so no minimum is
-/// lost. `None` unless exactly one piece is straight.
+/// A toroidal patch against a cone patch (either order): the torus lies within `r` of its
+/// major circle `M`, so `dist >= dist(M, cone patch) - r`, and `dist(M, cone patch)` is
+/// computed exactly by [`circle_segment_distance`]. `None` unless exactly one piece is
+/// straight.
 fn arc_cone(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> Option<ArcTori> {
     let (torus, cone, pos_ct, swapped) = match (a.arc, b.arc) {
         (ProfileArc::Arc { .. }, ProfileArc::Segment { .. }) => (a, b, pos_ab.inverse(), false),
@@ -214,19 +211,19 @@ fn arc_cone(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> Option<ArcTori> {
     let ProfileArc::Arc { center, radius, .. } = torus.arc else {
         return None;
     };
-    let Core::Line { n, c } = cone.core() else {
+    let ProfileArc::Segment { start, end } = cone.arc else {
         return None;
     };
     // The major circle of the torus in the cone's frame.
     let major = ParamCircle::parallel(center.x, center.y, &pos_ct);
-    let (dist, theta) = circle_cone_distance(&major, n, c);
+    let (dist, theta) = circle_segment_distance(&major, start, end)?;
     let scale = 1.0
         + center.x.abs()
         + center.y.abs()
         + radius
         + pos_ct.translation.vector.norm()
-        + cone.arc.start().coords.norm()
-        + cone.arc.end().coords.norm();
+        + start.coords.norm()
+        + end.coords.norm();
     let lower = dist - radius - BOUND_SLACK * scale;
     // Realised start: the major circle's point, its closest point on the cone patch, and the
     // torus point towards it (cone's frame).
@@ -252,30 +249,87 @@ fn arc_cone(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> Option<ArcTori> {
     })
 }
 
-/// `min over theta of dist(circle(theta), cone)` (circle in the cone's frame, the cone the
-/// revolved full line `n . (rho, z) = c`), with an angle where it is attained.
-fn circle_cone_distance(circle: &ParamCircle, n: Vector2<f64>, c: f64) -> (f64, f64) {
-    let field = |theta: f64| {
-        let p = circle.point(theta);
-        let rho = p.x.hypot(p.y);
-        let f_plus = n.x * rho + n.y * p.z - c;
-        let f_minus = -n.x * rho + n.y * p.z - c;
-        f_plus.abs().min(f_minus.abs())
-    };
-    let mut angles = Vec::with_capacity(16);
-    if !line_field_levels(circle, n, c, &mut angles) {
-        return (0.0, 0.0); // the circle lies on the cone
+/// `min over theta of dist(circle(theta), S)` for the revolved segment `S` from `start` to
+/// `end` (circle in S's frame), with an angle where it is attained; `None` for a degenerate
+/// segment.
+///
+/// **Exactness.** `g(theta)` is the planar distance from the circle point's meridian
+/// coordinates `(rho, z)` to the segment. At a local minimum of `g` the foot on the segment
+/// is either interior, where `g = |F|`, `F = n . (rho, z) - c` the signed distance to the
+/// segment's line, so the angle is a zero of `F` (a crossing: distance 0, up to the root's
+/// rounding) or a critical angle of `F` ([`line_field_levels`], [`line_field_critical`];
+/// the squared equations include both mirror branches and the circle's passages through
+/// the axis, a superset);
+/// or an end point, whose distance along the circle is bounded below by the circle/circle
+/// minimum to that end's parallel ([`crate::circle::min_distance`]). The minimum over
+/// these candidates, keeping only interior candidates whose foot lies on the segment, is
+/// the distance (each candidate is a realised value, and every local minimum is covered).
+fn circle_segment_distance(
+    circle: &ParamCircle,
+    start: Point2<f64>,
+    end: Point2<f64>,
+) -> Option<(f64, f64)> {
+    let dir = end - start;
+    let len = dir.norm();
+    if len == 0.0 || !len.is_finite() {
+        return None;
     }
-    if let Some(&theta) = angles.first() {
-        return (0.0, theta); // the circle crosses the cone
+    let d = dir / len;
+    let n = Vector2::new(-d.y, d.x);
+    let c = n.dot(&start.coords);
+    // Planar distance to the segment when the foot is interior, else None.
+    let interior = |theta: f64| {
+        let p = circle.point(theta);
+        let q = Point2::new(p.x.hypot(p.y), p.z);
+        let t = (q - start).dot(&d);
+        (0.0..=len)
+            .contains(&t)
+            .then(|| (n.dot(&q.coords) - c).abs())
+    };
+    // End parallels.
+    let mut best = (f64::INFINITY, 0.0);
+    for e in [start, end] {
+        let (dist, theta) = circle_parallel_distance(circle, e);
+        if dist < best.0 {
+            best = (dist, theta);
+        }
+    }
+    // Level and critical angles of both mirror branches (a superset): each is measured
+    // exactly where its foot is interior, so angles of the mirror branch are harmless.
+    let mut angles = Vec::with_capacity(24);
+    if !line_field_levels(circle, n, c, &mut angles) {
+        // The circle lies on the extended cone: F is constant along it.
+        angles.push(0.0);
     }
     if !line_field_critical(circle, n, &mut angles) {
-        return (field(0.0), 0.0); // constant along the circle
+        // F constant along the circle: every angle is critical.
+        angles.push(0.0);
     }
-    angles
-        .iter()
-        .map(|&t| (field(t), t))
-        .fold((field(0.0), 0.0), |m, x| if x.0 < m.0 { x } else { m })
+    for &theta in &angles {
+        if let Some(dist) = interior(theta) {
+            if dist < best.0 {
+                best = (dist, theta);
+            }
+        }
+    }
+    Some(best)
+}
+
+/// Minimum distance from a circle (a [`ParamCircle`] in the parallel's frame) to the
+/// parallel of meridian point `e`, with an angle on the circle where it is attained.
+fn circle_parallel_distance(circle: &ParamCircle, e: Point2<f64>) -> (f64, f64) {
+    let parallel = parallel_circle(e.x, e.y, &Isometry3::identity());
+    match as_circle3(circle) {
+        Some(c3) => {
+            let m = min_distance(&c3, &parallel);
+            (m.distance, m.angle_a)
+        }
+        None => {
+            let p = circle.o;
+            let dist = (p.x.hypot(p.y) - e.x.abs()).hypot(p.z - e.y);
+            (dist, 0.0)
+        }
+    }
 }
 
 /// Two points on the patches near `xa` (A's frame, near A) and `xb` (A's frame, near B):
@@ -304,4 +358,115 @@ fn realise(
         best = (qa, pb, d);
     }
     (best.0, best.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::query::patch_distance::patch_distance;
+    use crate::query::patch_distance::tests::{random_piece, random_pose, reference, Rng};
+    use std::f64::consts::TAU;
+
+    /// Stage-1 bounds bracket the exact patch distance and the independent reference (a
+    /// grid over both patches refined by pattern search: a realised distance, so an upper
+    /// estimate of the truth): `lower <= exact <= upper`, `lower <= reference`, and the
+    /// upper bound is realised by points on both patches.
+    #[test]
+    fn stage_one_bounds_bracket_the_patch_distance() {
+        let mut rng = Rng(77);
+        let mut settled = 0;
+        for i in 0..400 {
+            let a = Patch::new(random_piece(&mut rng));
+            let b = Patch::new(random_piece(&mut rng));
+            let pose = random_pose(&mut rng, if i % 2 == 0 { 1.5 } else { 3.0 });
+            let mut memo = CoreMemo::default();
+            let bounds = patch_bounds(&a, &b, &pose, &mut memo);
+            let lower = patch_lower(&a, &b, &pose, f64::INFINITY, &mut memo);
+            assert_eq!(lower.to_bits(), bounds.lower.to_bits(), "case {i}");
+            let exact = patch_distance(&a, &b, &pose).distance;
+            let slack = 1e-10 * (1.0 + pose.translation.vector.norm());
+            assert!(
+                bounds.lower <= exact + slack,
+                "case {i}: lower {} > exact {exact}",
+                bounds.lower
+            );
+            assert!(
+                bounds.upper >= exact - slack,
+                "case {i}: upper {} < exact {exact}",
+                bounds.upper
+            );
+            let r = reference(&a, &b, &pose);
+            assert!(
+                bounds.lower <= r + slack,
+                "case {i}: lower {} > reference {r}",
+                bounds.lower
+            );
+            // Realised: each point lies on its patch.
+            let on_a = a.point_distance(&bounds.point_a).0;
+            let on_b = b
+                .point_distance(&pose.inverse_transform_point(&bounds.point_b))
+                .0;
+            assert!(
+                on_a <= 1e-12 && on_b <= 1e-12,
+                "case {i}: off the patches {on_a} {on_b}"
+            );
+            assert!(((bounds.point_a - bounds.point_b).norm() - bounds.upper).abs() <= 1e-15);
+            if bounds.upper - bounds.lower <= 1e-9 {
+                settled += 1;
+            }
+        }
+        // The bound is tight (settles the pair) in a good share of random configurations.
+        assert!(settled >= 10, "only {settled} of 400 pairs settled");
+    }
+
+    /// The circle/segment distance against a dense sampling of the circle (each sample's
+    /// exact planar distance to the segment): never above it, and within its resolution.
+    #[test]
+    fn circle_segment_distance_matches_sampling() {
+        let mut rng = Rng(5);
+        for i in 0..300 {
+            let pose = random_pose(&mut rng, 2.0);
+            let (rho, z) = (0.05 + rng.f(), rng.f() - 0.5);
+            let circle = ParamCircle::parallel(rho, z, &pose);
+            let seg = match i % 3 {
+                0 => (
+                    Point2::new(rng.f(), rng.f() - 0.5),
+                    Point2::new(rng.f(), rng.f() - 0.5),
+                ),
+                1 => {
+                    let h = rng.f() - 0.5;
+                    (Point2::new(0.0, h), Point2::new(0.3 + rng.f(), h))
+                }
+                _ => {
+                    let r = 0.2 + rng.f();
+                    (Point2::new(r, -0.4), Point2::new(r, 0.4))
+                }
+            };
+            let (mine, theta) = circle_segment_distance(&circle, seg.0, seg.1).unwrap();
+            let planar = |t: f64| {
+                let p = circle.point(t);
+                let q = Point2::new(p.x.hypot(p.y), p.z);
+                let d = seg.1 - seg.0;
+                let s = ((q - seg.0).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+                (q - (seg.0 + d * s)).norm()
+            };
+            let n = 20_000;
+            let sampled = (0..n)
+                .map(|k| planar(k as f64 * TAU / n as f64))
+                .fold(f64::INFINITY, f64::min);
+            let resolution = rho * TAU / n as f64;
+            assert!(
+                mine <= sampled + 1e-12,
+                "case {i}: {mine} above sampled {sampled}"
+            );
+            assert!(
+                mine >= sampled - resolution,
+                "case {i}: {mine} below sampled {sampled}"
+            );
+            assert!(
+                (planar(theta) - mine).abs() <= 1e-9,
+                "case {i}: angle does not attain it"
+            );
+        }
+    }
 }

@@ -41,13 +41,16 @@
 //! [`PatchDistance::interior_pairs`]: at the deepest point of such a loop the common normal
 //! has both points inside the other solid, which the caller (who knows the solids) tests.
 
-use super::binormal_kernel::{circle_torus_critical, interior_torus_torus, parallel_pair_closest};
+use super::binormal_kernel::{
+    circle_torus_critical, interior_torus_torus, parallel_circle, parallel_pair_closest,
+};
 use super::bounds::{node_pair_bound, BoundKind};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
 use super::sweep::{critical_angles, level_angles, level_crossings, ParamCircle, RadialField};
 use super::tree::Disk;
+use crate::circle::min_distance;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
 use std::collections::HashMap;
 
@@ -592,6 +595,49 @@ fn surface_normal(o: &Patch, f: &Point3<f64>) -> Vector3<f64> {
     e * n2.x + Vector3::z() * n2.y
 }
 
+/// Fast exact path of [`boundary_vs_patch`] for a toroidal patch `o` (issue 11: no degree-8
+/// solve in the common case). Let `m` be the minimum distance between the parallel `G` and
+/// the patch's major circle `M` (the circle module's certified minimum) and `x` its point
+/// on `G`. When `m` exceeds the tube radius `r`, `G` lies outside the solid torus (no
+/// crossing), every point of `G` is at least `m - r` from the torus surface, hence from
+/// the patch; if the patch's closest point `c` to `x` is at distance `m - r` (up to
+/// [`FAST_PATH_REL`] of the scale), `(x, c)` realises that bound and is the exact answer.
+/// Otherwise `None`: the minimum lies where the torus' closest point is off the patch.
+fn parallel_torus_fast(
+    e: Point2<f64>,
+    o: &Patch,
+    pos_og: &Isometry3<f64>,
+) -> Option<(Point3<f64>, Point3<f64>)> {
+    let Core::Circle {
+        r_major,
+        z,
+        r_minor,
+    } = o.core()
+    else {
+        return None;
+    };
+    if r_major == 0.0 {
+        return None;
+    }
+    let g = parallel_circle(e.x, e.y, pos_og);
+    let core = parallel_circle(r_major, z, &Isometry3::identity());
+    let m = min_distance(&g, &core);
+    let scale = 1.0 + g.center.coords.norm() + g.radius + r_major.abs() + z.abs() + r_minor;
+    let tol = FAST_PATH_REL * scale;
+    let bound = m.distance - r_minor;
+    if bound <= tol {
+        return None;
+    }
+    let (d, c) = o.point_distance(&m.point_a);
+    (d <= bound + tol).then_some((m.point_a, c))
+}
+
+/// Relative agreement (to the configuration scale) between a realised distance and the
+/// torus bound for [`parallel_torus_fast`] to accept it: the circle module guarantees its
+/// minimum to [`crate::circle::TIE_REL_TOL`] (`1e-12`) of the scale, and the query's
+/// slack ([`super::distance::POSE_SLACK_REL`], `2e-11`) covers both with margin.
+pub const FAST_PATH_REL: f64 = 1e-12;
+
 /// A lower bound of the distance from the boundary parallel `e` (frame G, placed in O's
 /// frame by `pos_og`) to the patch `o`, from circle/circle minima only: the parallel against
 /// the solid torus of the disk around `o`'s piece and, for an arc, of the arc's own circle
@@ -651,6 +697,12 @@ fn boundary_vs_patch(
     if e.x.abs() <= POINT_SNAP * (1.0 + e.y.abs()) {
         emit_feet(pos_og * Point3::new(0.0, 0.0, e.y));
         return false;
+    }
+    if kernel == Kernel::Binormals {
+        if let Some((x, c)) = parallel_torus_fast(e, o, pos_og) {
+            emit(x, c);
+            return false;
+        }
     }
     let mut thetas = Vec::with_capacity(48);
     let circle = ParamCircle::parallel(e.x, e.y, pos_og);

@@ -3,6 +3,7 @@
 pub mod baselines;
 pub mod circles;
 pub mod companion;
+pub mod crosscheck;
 pub mod exact_circle;
 pub mod oracle;
 pub mod queries;

@@ -61,6 +61,31 @@ enum Command {
         #[arg(long)]
         no_regressions: bool,
     },
+    /// revdist against FCL meshes (certified tessellations) on the paper models and M_t
+    /// frames, and against CGAL / libccd on convex pairs; writes crosscheck.md, .csv and
+    /// failures.jsonl (verify/src/crosscheck/mod.rs states the agreement criterion).
+    Crosscheck {
+        /// Poses per mesh pair and eps (the full scale is 1000).
+        #[arg(long, default_value_t = verify::crosscheck::runner::DEFAULT_POSES)]
+        poses: usize,
+        /// Poses per convex pair and eps (0: no convex checks).
+        #[arg(long, default_value_t = verify::crosscheck::runner::DEFAULT_CONVEX_POSES)]
+        convex_poses: usize,
+        /// Eps of trees and meshes (repeat the flag or separate by commas).
+        #[arg(long, value_delimiter = ',', default_values_t = verify::crosscheck::runner::DEFAULT_EPS.to_vec())]
+        eps: Vec<f64>,
+        /// Output directory of the report.
+        #[arg(long, default_value = "figures/crosscheck")]
+        out: std::path::PathBuf,
+        /// A small slice (8 poses per mesh pair, 4 per convex pair) for a smoke test.
+        #[arg(long)]
+        quick: bool,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Worker threads (default: all cores).
+        #[arg(long, default_value_t = 0)]
+        threads: usize,
+    },
     /// One query checked against the oracle: solids as built-in names or profile files,
     /// B placed by --pose-b as in `revdist distance`.
     Oracle {
@@ -131,6 +156,23 @@ fn main() {
                 std::process::exit(1);
             }
         }
+        Command::Crosscheck {
+            poses,
+            convex_poses,
+            eps,
+            out,
+            quick,
+            seed,
+            threads,
+        } => std::process::exit(crosscheck_command(
+            poses,
+            convex_poses,
+            eps,
+            &out,
+            quick,
+            seed,
+            threads,
+        )),
         Command::Oracle {
             a,
             b,
@@ -145,6 +187,56 @@ fn main() {
             }
         }
     }
+}
+
+/// Poses per mesh pair and per convex pair of `verify crosscheck --quick`.
+const QUICK_POSES: (usize, usize) = (8, 4);
+
+/// Runs the cross-check and writes its report; the exit code (0 clean, 1 failures, 2 error).
+fn crosscheck_command(
+    poses: usize,
+    convex_poses: usize,
+    eps: Vec<f64>,
+    out: &std::path::Path,
+    quick: bool,
+    seed: u64,
+    threads: usize,
+) -> i32 {
+    if eps.is_empty() || eps.iter().any(|e| !(e.is_finite() && *e > 0.0 && *e < 1.0)) {
+        eprintln!("error: --eps needs numbers in (0, 1), got {eps:?}");
+        return 2;
+    }
+    let (poses, convex_poses) = if quick {
+        QUICK_POSES
+    } else {
+        (poses, convex_poses)
+    };
+    if poses == 0 && convex_poses == 0 {
+        eprintln!("error: --poses and --convex-poses are both 0: nothing to check");
+        return 2;
+    }
+    let opts = verify::crosscheck::Options {
+        poses,
+        convex_poses,
+        eps,
+        seed,
+        threads,
+        ..Default::default()
+    };
+    let report = match verify::crosscheck::run(&opts) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    print!("{}", report.summary());
+    if let Err(e) = report.write(out) {
+        eprintln!("error: writing the report to {}: {e}", out.display());
+        return 2;
+    }
+    println!("report written to {}", out.display());
+    i32::from(report.failures() > 0)
 }
 
 /// A built-in model or a profile file.

@@ -10,6 +10,7 @@ use std::io::{BufRead, Write};
 use std::sync::Arc;
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use rayon::prelude::*;
 use revdist::query::{try_distance, Budget, Distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use serde::{Deserialize, Serialize};
@@ -93,6 +94,7 @@ struct Output {
     point_b: [f64; 3],
     overlap: bool,
     node_pairs: usize,
+    leaf_bounds: usize,
     leaf_tests: usize,
     subdivided_pairs: usize,
     budget_exhausted: bool,
@@ -108,6 +110,7 @@ impl From<&Distance> for Output {
             point_b: [d.point_b.x, d.point_b.y, d.point_b.z],
             overlap: d.overlap,
             node_pairs: d.stats.node_pairs,
+            leaf_bounds: d.stats.leaf_bounds,
             leaf_tests: d.stats.leaf_tests,
             subdivided_pairs: d.stats.subdivided_pairs,
             budget_exhausted: d.stats.budget_exhausted,
@@ -229,8 +232,9 @@ pub fn run(args: Args) -> CmdResult {
         );
         println!("overlap   {}", d.overlap);
         println!(
-            "stats     {} node pairs, {} leaf tests, {} patch tests{}",
+            "stats     {} node pairs, {} leaf pairs bounded, {} solved exactly ({} patch pairs){}",
             d.stats.node_pairs,
+            d.stats.leaf_bounds,
             d.stats.leaf_tests,
             d.stats.patch_tests,
             if d.stats.budget_exhausted {
@@ -243,13 +247,20 @@ pub fn run(args: Args) -> CmdResult {
     Ok(())
 }
 
-/// One batch line to a result or a per-line error message.
-fn run_line(
+/// A parsed batch line: the two posed solids and the options of its query.
+struct Prepared {
+    a: Solid,
+    b: Solid,
+    opts: QueryOptions,
+}
+
+/// One batch line to a query ready to run, or a per-line error message.
+fn prepare_line(
     line: &str,
     default_eps: f64,
     opts: &QueryOptions,
     cache: &mut SolidCache,
-) -> Result<Output, String> {
+) -> Result<Prepared, String> {
     let req: Request = serde_json::from_str(line).map_err(|e| format!("bad request: {e}"))?;
     let eps = req.eps.unwrap_or(default_eps);
     check_eps(eps)?;
@@ -265,11 +276,14 @@ fn run_line(
         Some(p) => pose_from_json(p).map_err(|e| format!("pose_b: {e}"))?,
         None => Isometry3::identity(),
     };
-    let sa = cache.get(&req.a, eps)?;
-    let sb = cache.get(&req.b, eps)?.with_pose(pose);
-    let d = try_distance(&sa, &sb, &opts).map_err(|e| e.to_string())?;
-    Ok(Output::from(&d))
+    let a = cache.get(&req.a, eps)?;
+    let b = cache.get(&req.b, eps)?.with_pose(pose);
+    Ok(Prepared { a, b, opts })
 }
+
+/// Lines read, prepared (trees built once per shape and eps, in order) and then queried in
+/// parallel per chunk; results are written in input order.
+const BATCH_CHUNK: usize = 1024;
 
 fn run_batch(path: &str, default_eps: f64, opts: &QueryOptions) -> CmdResult {
     check_eps(default_eps)?;
@@ -282,16 +296,36 @@ fn run_batch(path: &str, default_eps: f64, opts: &QueryOptions) -> CmdResult {
     let mut cache = SolidCache::default();
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
+    let mut chunk: Vec<(usize, Result<Prepared, String>)> = Vec::with_capacity(BATCH_CHUNK);
+    let mut flush = |chunk: &mut Vec<(usize, Result<Prepared, String>)>| -> CmdResult {
+        let results: Vec<String> = chunk
+            .par_iter()
+            .map(|(i, p)| {
+                let r = p
+                    .as_ref()
+                    .map_err(Clone::clone)
+                    .and_then(|p| try_distance(&p.a, &p.b, &p.opts).map_err(|e| e.to_string()));
+                match r {
+                    Ok(d) => serde_json::to_string(&Output::from(&d)).unwrap_or_default(),
+                    Err(e) => serde_json::json!({ "line": i + 1, "error": e }).to_string(),
+                }
+            })
+            .collect();
+        for text in results {
+            writeln!(out, "{text}")?;
+        }
+        chunk.clear();
+        Ok(())
+    };
     for (i, line) in reader.lines().enumerate() {
         let line = line.map_err(|e| format!("reading '{path}': {e}"))?;
         if line.trim().is_empty() {
             continue;
         }
-        let text = match run_line(&line, default_eps, opts, &mut cache) {
-            Ok(o) => serde_json::to_string(&o)?,
-            Err(e) => serde_json::json!({ "line": i + 1, "error": e }).to_string(),
-        };
-        writeln!(out, "{text}")?;
+        chunk.push((i, prepare_line(&line, default_eps, opts, &mut cache)));
+        if chunk.len() >= BATCH_CHUNK {
+            flush(&mut chunk)?;
+        }
     }
-    Ok(())
+    flush(&mut chunk)
 }

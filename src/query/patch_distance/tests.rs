@@ -14,7 +14,7 @@ impl Rng {
 }
 
 /// Random piece in the half-plane rho >= 0.
-fn random_piece(rng: &mut Rng) -> ProfileArc {
+pub(crate) fn random_piece(rng: &mut Rng) -> ProfileArc {
     loop {
         let p = match (rng.f() * 5.0) as u32 {
             0 => ProfileArc::Segment {
@@ -54,7 +54,7 @@ fn random_piece(rng: &mut Rng) -> ProfileArc {
     }
 }
 
-fn random_pose(rng: &mut Rng, spread: f64) -> Isometry3<f64> {
+pub(crate) fn random_pose(rng: &mut Rng, spread: f64) -> Isometry3<f64> {
     let axis = Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
     let rot = UnitQuaternion::from_scaled_axis(axis * 6.0);
     let t = Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5) * spread;
@@ -67,7 +67,7 @@ fn surface_point(p: &Patch, s: f64, th: f64) -> Point3<f64> {
 
 /// Reference: grid over B (frame B) measured exactly against A, refined by pattern
 /// search; and the same with roles swapped.
-fn reference(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> f64 {
+pub(crate) fn reference(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> f64 {
     let one_side = |a: &Patch, b: &Patch, pos: &Isometry3<f64>| {
         let pos_inv = pos.inverse();
         let f = |s: f64, th: f64| {

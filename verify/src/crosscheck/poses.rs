@@ -1,0 +1,135 @@
+//! Seeded poses of B relative to A (A at the identity): separated, near-touching, overlapping
+//! and random placements inside A's bounding cylinder (interlocked, nested or crossing, as the
+//! shapes allow).
+
+use super::shapes::Prepared;
+use crate::queries::PoseSpec;
+use crate::random_profiles::SplitMix64;
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use revdist::query::{distance, QueryOptions};
+
+/// Gap range (length units) of separated poses.
+pub const SEPARATED_GAPS: (f64, f64) = (0.1, 1.0);
+/// Gap range of near-touching poses.
+pub const NEAR_GAPS: (f64, f64) = (1e-4, 1e-1);
+/// Depth range (relative to the smaller solid's radius) by which overlapping poses push B
+/// past contact.
+pub const OVERLAP_DEPTHS: (f64, f64) = (1e-3, 0.5);
+/// Conservative-advancement steps when sliding B towards A (each step keeps the gap above the
+/// target, see [`approach`]); the final pose is accepted whatever its gap, which is recorded.
+pub const ADVANCE_STEPS: usize = 30;
+/// Advancement stops when the gap is within this factor of the target.
+pub const ADVANCE_ACCEPT: f64 = 1.5;
+
+/// How B was placed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PoseKind {
+    Separated,
+    NearTouching,
+    Overlapping,
+    /// B's centre uniform in A's bounding cylinder, random rotation.
+    Inside,
+}
+
+impl PoseKind {
+    pub const ALL: [PoseKind; 4] = [
+        PoseKind::Separated,
+        PoseKind::NearTouching,
+        PoseKind::Overlapping,
+        PoseKind::Inside,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            PoseKind::Separated => "separated",
+            PoseKind::NearTouching => "near-touching",
+            PoseKind::Overlapping => "overlapping",
+            PoseKind::Inside => "inside-box",
+        }
+    }
+
+    /// The kind of pose number `i`: a fixed cycle of 20 (8 near-touching, 6 separated, 3
+    /// overlapping, 3 inside A's box) ordered so that any 4 consecutive poses from the start
+    /// cover all kinds.
+    pub fn of_index(i: usize) -> PoseKind {
+        use PoseKind::{Inside as I, NearTouching as N, Overlapping as O, Separated as S};
+        const CYCLE: [PoseKind; 20] = [N, S, O, I, N, S, N, S, N, O, I, N, S, N, S, N, O, I, N, S];
+        CYCLE[i % CYCLE.len()]
+    }
+}
+
+fn spec(t: Vector3<f64>, q: &UnitQuaternion<f64>) -> PoseSpec {
+    let c = q.quaternion().coords; // (x, y, z, w)
+    PoseSpec {
+        translation: [t.x, t.y, t.z],
+        rotation: [c.w, c.x, c.y, c.z],
+    }
+}
+
+/// B's pose with its axis centre at `A's centre + u s`, rotated by `q`.
+fn along(
+    a: &Prepared,
+    b: &Prepared,
+    q: &UnitQuaternion<f64>,
+    u: &Vector3<f64>,
+    s: f64,
+) -> PoseSpec {
+    let t = Vector3::new(0.0, 0.0, a.centre_z) + u * s - q * Vector3::new(0.0, 0.0, b.centre_z);
+    spec(t, q)
+}
+
+/// Slides B from far away along `u` towards A by conservative advancement: the distance is
+/// 1-Lipschitz in the slide parameter, so stepping by `lower - gap` never passes below `gap`.
+/// Returns the parameter reached (or `None` when A and B already meet far away, which cannot
+/// happen for bounded solids).
+fn approach(
+    a: &Prepared,
+    b: &Prepared,
+    q: &UnitQuaternion<f64>,
+    u: &Vector3<f64>,
+    gap: f64,
+) -> Option<f64> {
+    let opts = QueryOptions::default();
+    let mut s = a.radius + b.radius + gap + 1.0;
+    for _ in 0..ADVANCE_STEPS {
+        let pose = along(a, b, q, u, s).isometry();
+        let d = distance(&a.solid, &b.solid.with_pose(pose), &opts);
+        if d.overlap {
+            return None;
+        }
+        if d.lower <= gap * ADVANCE_ACCEPT {
+            break;
+        }
+        s -= d.lower - gap;
+    }
+    Some(s)
+}
+
+/// A pose of B of the given kind, drawn from `rng`.
+pub fn make_pose(a: &Prepared, b: &Prepared, kind: PoseKind, rng: &mut SplitMix64) -> PoseSpec {
+    let r = rng.quaternion();
+    let q = UnitQuaternion::from_quaternion(Quaternion::new(r[0], r[1], r[2], r[3]));
+    let u = Vector3::from(rng.unit_vector());
+    match kind {
+        PoseKind::Separated | PoseKind::NearTouching => {
+            let (lo, hi) = if kind == PoseKind::Separated {
+                SEPARATED_GAPS
+            } else {
+                NEAR_GAPS
+            };
+            let gap = rng.log_range(lo, hi);
+            let s = approach(a, b, &q, &u, gap).unwrap_or(a.radius + b.radius + 1.0);
+            along(a, b, &q, &u, s)
+        }
+        PoseKind::Overlapping => {
+            let depth = rng.log_range(OVERLAP_DEPTHS.0, OVERLAP_DEPTHS.1) * a.radius.min(b.radius);
+            let s = approach(a, b, &q, &u, NEAR_GAPS.0).unwrap_or(0.0);
+            along(a, b, &q, &u, s - depth)
+        }
+        PoseKind::Inside => {
+            // Uniform in A's bounding ball about its axis centre.
+            let r = a.radius * rng.unit().cbrt();
+            along(a, b, &q, &u, r)
+        }
+    }
+}

@@ -1,0 +1,309 @@
+//! Runs the cross-check: prepares the shapes, spreads (pair, eps, block of poses) jobs over
+//! threads, each with its own FCL BVHs (an `FclMesh` is `Send`, not `Sync`).
+
+use super::convex;
+use super::criterion::{judge, Baseline, Certified, SLACK_REL};
+use super::poses::{make_pose, PoseKind};
+use super::report::{CaseRecord, Check, Report};
+use super::shapes::{prepare, Prepared, CONVEX_MODELS, MORPH_FRAMES, PAPER_MODELS};
+use crate::baselines::fcl::{Bv, FclMesh};
+use crate::random_profiles::SplitMix64;
+use nalgebra::{Isometry3, Point3};
+use revdist::query::containment::point_in_solid;
+use revdist::query::{distance, QueryOptions};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+/// Default poses per mesh pair and eps (about 4 minutes on 2 cores with the default eps).
+pub const DEFAULT_POSES: usize = 100;
+/// Default poses per convex pair and eps (CGAL's exact hull distance dominates).
+pub const DEFAULT_CONVEX_POSES: usize = 20;
+/// Default eps values (the issue's).
+pub const DEFAULT_EPS: [f64; 2] = [1e-3, 1e-4];
+/// Poses per job: small enough to balance two threads, large enough to reuse the BVHs.
+const BLOCK: usize = 25;
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Poses per mesh pair and eps.
+    pub poses: usize,
+    /// Poses per convex pair and eps (0 leaves the convex checks out).
+    pub convex_poses: usize,
+    pub eps: Vec<f64>,
+    pub seed: u64,
+    /// Worker threads (0: all cores).
+    pub threads: usize,
+    /// Mesh pairs (default: [`default_pairs`]).
+    pub pairs: Vec<(String, String)>,
+    /// Convex pairs (default: [`convex_pairs`]).
+    pub convex_pairs: Vec<(String, String)>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            poses: DEFAULT_POSES,
+            convex_poses: DEFAULT_CONVEX_POSES,
+            eps: DEFAULT_EPS.to_vec(),
+            seed: 1,
+            threads: 0,
+            pairs: default_pairs(),
+            convex_pairs: convex_pairs(),
+        }
+    }
+}
+
+/// The 15 pairs (i <= j) of the paper models, then each M_t frame against each model.
+pub fn default_pairs() -> Vec<(String, String)> {
+    let mut v = Vec::new();
+    for (i, a) in PAPER_MODELS.iter().enumerate() {
+        for b in &PAPER_MODELS[i..] {
+            v.push((a.to_string(), b.to_string()));
+        }
+    }
+    for m in MORPH_FRAMES {
+        for b in PAPER_MODELS {
+            v.push((m.to_string(), b.to_string()));
+        }
+    }
+    v
+}
+
+/// The 10 pairs (i <= j) of the convex models.
+pub fn convex_pairs() -> Vec<(String, String)> {
+    let mut v = Vec::new();
+    for (i, a) in CONVEX_MODELS.iter().enumerate() {
+        for b in &CONVEX_MODELS[i..] {
+            v.push((a.to_string(), b.to_string()));
+        }
+    }
+    v
+}
+
+/// One unit of work.
+#[derive(Debug, Clone, Copy)]
+struct Job {
+    convex: bool,
+    pair: usize,
+    eps: usize,
+    start: usize,
+    end: usize,
+}
+
+type Key = (String, u64);
+
+fn key(name: &str, eps: f64) -> Key {
+    (name.to_owned(), eps.to_bits())
+}
+
+/// Runs the cross-check.
+pub fn run(opts: &Options) -> Result<Report, String> {
+    if opts.eps.is_empty() || opts.eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
+        return Err(format!("eps must be positive numbers, got {:?}", opts.eps));
+    }
+    let t0 = Instant::now();
+    // Shapes, built once and shared read-only by the workers.
+    let mut prepared: HashMap<Key, Arc<Prepared>> = HashMap::new();
+    let names = opts
+        .pairs
+        .iter()
+        .chain(&opts.convex_pairs)
+        .flat_map(|(a, b)| [a.clone(), b.clone()]);
+    for name in names {
+        for &eps in &opts.eps {
+            if let std::collections::hash_map::Entry::Vacant(e) = prepared.entry(key(&name, eps)) {
+                e.insert(Arc::new(prepare(&name, eps)?));
+            }
+        }
+    }
+    let prepare_time = t0.elapsed();
+
+    let mut jobs = Vec::new();
+    for (convex, pairs, n) in [
+        (false, &opts.pairs, opts.poses),
+        (true, &opts.convex_pairs, opts.convex_poses),
+    ] {
+        for pair in 0..pairs.len() {
+            for eps in 0..opts.eps.len() {
+                for start in (0..n).step_by(BLOCK) {
+                    jobs.push(Job {
+                        convex,
+                        pair,
+                        eps,
+                        start,
+                        end: (start + BLOCK).min(n),
+                    });
+                }
+            }
+        }
+    }
+    let threads = if opts.threads == 0 {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    } else {
+        opts.threads
+    };
+    let next = AtomicUsize::new(0);
+    let records = Mutex::new(Vec::new());
+    let errors = Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| {
+                let mut bvhs: HashMap<Key, FclMesh> = HashMap::new();
+                loop {
+                    let j = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(job) = jobs.get(j) else { break };
+                    let pairs = if job.convex {
+                        &opts.convex_pairs
+                    } else {
+                        &opts.pairs
+                    };
+                    let (na, nb) = &pairs[job.pair];
+                    let eps = opts.eps[job.eps];
+                    let a = &prepared[&key(na, eps)];
+                    let b = &prepared[&key(nb, eps)];
+                    let out = if job.convex {
+                        convex_job(a, b, job, opts.seed)
+                    } else {
+                        mesh_job(a, b, job, opts.seed, &mut bvhs)
+                    };
+                    match out {
+                        Ok(mut v) => records.lock().expect("records lock").append(&mut v),
+                        Err(e) => errors.lock().expect("errors lock").push(e),
+                    }
+                }
+            });
+        }
+    });
+    let errors = errors.into_inner().expect("errors lock");
+    if !errors.is_empty() {
+        return Err(errors.join("\n"));
+    }
+    let mut records = records.into_inner().expect("records lock");
+    records.sort_by(|x, y| {
+        (x.check, &x.a, &x.b, x.eps.to_bits(), x.index).cmp(&(
+            y.check,
+            &y.a,
+            &y.b,
+            y.eps.to_bits(),
+            y.index,
+        ))
+    });
+    Ok(Report {
+        records,
+        options: opts.clone(),
+        threads,
+        prepare_time,
+        wall: t0.elapsed(),
+    })
+}
+
+/// The pose generator of case `index` of a pair (independent of the job split).
+fn case_rng(seed: u64, a: &str, b: &str, eps: f64, index: usize) -> SplitMix64 {
+    let mut h = SplitMix64(seed);
+    for byte in a.bytes().chain([b'/']).chain(b.bytes()) {
+        h = h.fork(u64::from(byte));
+    }
+    h.fork(eps.to_bits()).fork(index as u64)
+}
+
+/// The configuration scale of a pose (for the rounding slack).
+pub fn scale(a: &Prepared, b: &Prepared, pose: &Isometry3<f64>) -> f64 {
+    1.0 + pose.translation.vector.norm() + a.radius + b.radius + a.centre_z.abs() + b.centre_z.abs()
+}
+
+/// Whether world point `p` certainly lies inside `s`'s solid, `margin` beyond its chain.
+fn inside_by(s: &Prepared, pose: &Isometry3<f64>, p: &Point3<f64>, margin: f64) -> bool {
+    let local = pose.inverse_transform_point(p);
+    let r = point_in_solid(&s.solid.tree, &local);
+    r.inside && r.margin > margin
+}
+
+fn fcl_mesh<'m>(bvhs: &'m mut HashMap<Key, FclMesh>, s: &Prepared) -> Result<&'m FclMesh, String> {
+    let k = key(&s.name, s.eps);
+    if !bvhs.contains_key(&k) {
+        let m = FclMesh::new(&s.mesh, Bv::Obbrss)
+            .map_err(|e| format!("FCL BVH of {} at eps {:e}: {e}", s.name, s.eps))?;
+        bvhs.insert(k.clone(), m);
+    }
+    Ok(&bvhs[&k])
+}
+
+fn mesh_job(
+    a: &Prepared,
+    b: &Prepared,
+    job: &Job,
+    seed: u64,
+    bvhs: &mut HashMap<Key, FclMesh>,
+) -> Result<Vec<CaseRecord>, String> {
+    fcl_mesh(bvhs, a)?;
+    fcl_mesh(bvhs, b)?;
+    let (ma, mb) = (&bvhs[&key(&a.name, a.eps)], &bvhs[&key(&b.name, b.eps)]);
+    let opts = QueryOptions::default();
+    let mut out = Vec::with_capacity(job.end - job.start);
+    for index in job.start..job.end {
+        let mut rng = case_rng(seed, &a.name, &b.name, a.eps, index);
+        let kind = PoseKind::of_index(index);
+        let pose = make_pose(a, b, kind, &mut rng);
+        let iso = pose.isometry();
+        let tq = Instant::now();
+        let d = distance(&a.solid, &b.solid.with_pose(iso), &opts);
+        let query_time = tq.elapsed();
+        let f = ma
+            .distance(mb, &Isometry3::identity(), &iso)
+            .map_err(|e| format!("FCL {} / {}: {e}", a.name, b.name))?;
+        let h = a.bound + b.bound;
+        let base = Baseline {
+            distance: f.distance,
+            mesh_bounds: h,
+            slack: SLACK_REL * scale(a, b, &iso),
+        };
+        let rev = Certified {
+            lower: d.lower,
+            upper: d.upper,
+            overlap: d.overlap,
+        };
+        let mut nested = false;
+        let judgement = judge(rev, d.value, base, || {
+            nested = inside_by(
+                a,
+                &Isometry3::identity(),
+                &f.point_b,
+                a.solid.tree.target_eps + b.bound,
+            ) || inside_by(b, &iso, &f.point_a, b.solid.tree.target_eps + a.bound);
+            nested
+        });
+        out.push(CaseRecord {
+            check: Check::Fcl,
+            a: a.name.clone(),
+            b: b.name.clone(),
+            eps: a.eps,
+            index,
+            kind,
+            pose,
+            lower: d.lower,
+            upper: d.upper,
+            value: d.value,
+            overlap: d.overlap,
+            baseline: f.distance,
+            mesh_bounds: h,
+            judgement,
+            note: if nested { "nested" } else { "" },
+            query_time,
+        });
+    }
+    Ok(out)
+}
+
+fn convex_job(a: &Prepared, b: &Prepared, job: &Job, seed: u64) -> Result<Vec<CaseRecord>, String> {
+    let mut out = Vec::new();
+    for index in job.start..job.end {
+        let mut rng = case_rng(seed ^ 0xC0_4E3, &a.name, &b.name, a.eps, index);
+        let kind = PoseKind::of_index(index);
+        let pose = make_pose(a, b, kind, &mut rng);
+        out.extend(convex::check_case(a, b, index, kind, pose)?);
+    }
+    Ok(out)
+}
