@@ -41,6 +41,10 @@ pub struct TraversalStats {
     pub patch_bounds: usize,
     /// Patch pairs solved exactly (up to 4 per leaf pair for biarcs).
     pub patch_tests: usize,
+    /// Wall time in stage-1 leaf bounds, nanoseconds (the cost model's time split).
+    pub leaf_bounds_ns: u64,
+    /// Wall time in exact leaf solves (stage 2), nanoseconds.
+    pub leaf_tests_ns: u64,
     /// Node-pair bounds computed.
     pub bound_tests: usize,
     /// Largest queue length.
@@ -179,10 +183,12 @@ pub fn traverse(
         // Patch pairs at least `upper - tol + e` apart cannot improve the answer: their
         // bound is enough.
         let prune_at = out.upper - tol + e;
+        let clock = Instant::now();
         let staged = match from {
             State::Open => leaves.bounds(a, b, prune_at),
             _ => None,
         };
+        stats.leaf_bounds_ns += clock.elapsed().as_nanos() as u64;
         let r = match staged {
             Some(r) => {
                 stats.leaf_bounds += 1;
@@ -190,7 +196,10 @@ pub fn traverse(
             }
             None => {
                 stats.leaf_tests += 1;
-                leaves.exact(a, b, prune_at)
+                let clock = Instant::now();
+                let r = leaves.exact(a, b, prune_at);
+                stats.leaf_tests_ns += clock.elapsed().as_nanos() as u64;
+                r
             }
         };
         stats.patch_bounds += r.patch_bounds;
