@@ -4,7 +4,7 @@
 
 use super::criterion::{judge, judge_penetration, Baseline, Certified, SLACK_REL};
 use super::poses::PoseKind;
-use super::report::{CaseRecord, Check};
+use super::report::{CaseContext, CaseRecord, Check};
 use super::runner::scale;
 use super::shapes::Prepared;
 use crate::baselines::{ccd, cgal};
@@ -44,24 +44,18 @@ pub fn check_case(
     let pb: Vec<Point3<f64>> = b.vertices.iter().map(|p| iso * p).collect();
     let h = a.bound + b.bound;
     let slack = SLACK_REL * scale(a, b, &iso);
-    let record = |check, baseline, judgement| CaseRecord {
-        check,
-        a: a.name.clone(),
-        b: b.name.clone(),
+    let ctx = CaseContext {
+        a: &a.name,
+        b: &b.name,
         eps: a.eps,
         index,
         kind,
         pose,
-        lower: d.lower,
-        upper: d.upper,
-        value: d.value,
-        overlap: d.overlap,
-        baseline,
+        answer: &d,
         mesh_bounds: h,
-        judgement,
-        note: "",
         query_time,
     };
+    let record = |check, baseline, judgement| CaseRecord::new(&ctx, check, baseline, judgement, "");
     let mut out = Vec::with_capacity(3);
 
     let exact = cgal::polytope_distance_exact(pa, &pb)

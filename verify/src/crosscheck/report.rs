@@ -63,7 +63,50 @@ pub struct CaseRecord {
     pub query_time: Duration,
 }
 
+/// What every check of one case shares: the shape pair, the pose and revdist's answer.
+pub struct CaseContext<'c> {
+    pub a: &'c str,
+    pub b: &'c str,
+    pub eps: f64,
+    pub index: usize,
+    pub kind: PoseKind,
+    pub pose: PoseSpec,
+    pub answer: &'c revdist::query::Distance,
+    /// `h_a + h_b`.
+    pub mesh_bounds: f64,
+    pub query_time: Duration,
+}
+
 impl CaseRecord {
+    /// The record of one check of a case.
+    pub fn new(
+        ctx: &CaseContext,
+        check: Check,
+        baseline: f64,
+        judgement: Judgement,
+        note: &'static str,
+    ) -> CaseRecord {
+        let d = ctx.answer;
+        CaseRecord {
+            check,
+            a: ctx.a.to_string(),
+            b: ctx.b.to_string(),
+            eps: ctx.eps,
+            index: ctx.index,
+            kind: ctx.kind,
+            pose: ctx.pose,
+            lower: d.lower,
+            upper: d.upper,
+            value: d.value,
+            overlap: d.overlap,
+            baseline,
+            mesh_bounds: ctx.mesh_bounds,
+            judgement,
+            note,
+            query_time: ctx.query_time,
+        }
+    }
+
     /// A JSON line for `revdist distance --batch FILE`.
     pub fn reproducer(&self) -> String {
         format!(

@@ -4,7 +4,7 @@
 use super::convex;
 use super::criterion::{judge, Baseline, Certified, SLACK_REL};
 use super::poses::{make_pose, PoseKind};
-use super::report::{CaseRecord, Check, Report};
+use super::report::{CaseContext, CaseRecord, Check, Report};
 use super::shapes::{prepare, Prepared, CONVEX_MODELS, MORPH_FRAMES, PAPER_MODELS};
 use crate::baselines::fcl::{Bv, FclMesh};
 use crate::random_profiles::SplitMix64;
@@ -275,24 +275,25 @@ fn mesh_job(
             ) || inside_by(b, &iso, &f.point_a, b.solid.tree.target_eps + a.bound);
             nested
         });
-        out.push(CaseRecord {
-            check: Check::Fcl,
-            a: a.name.clone(),
-            b: b.name.clone(),
+        let ctx = CaseContext {
+            a: &a.name,
+            b: &b.name,
             eps: a.eps,
             index,
             kind,
             pose,
-            lower: d.lower,
-            upper: d.upper,
-            value: d.value,
-            overlap: d.overlap,
-            baseline: f.distance,
+            answer: &d,
             mesh_bounds: h,
-            judgement,
-            note: if nested { "nested" } else { "" },
             query_time,
-        });
+        };
+        let note = if nested { "nested" } else { "" };
+        out.push(CaseRecord::new(
+            &ctx,
+            Check::Fcl,
+            f.distance,
+            judgement,
+            note,
+        ));
     }
     Ok(out)
 }
