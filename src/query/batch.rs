@@ -58,7 +58,14 @@ mod tests {
             let one = distance(a, b, &opts);
             // Everything but the wall-time counters.
             assert_eq!(
-                (one.value, one.lower, one.upper, one.point_a, one.point_b, one.overlap),
+                (
+                    one.value,
+                    one.lower,
+                    one.upper,
+                    one.point_a,
+                    one.point_b,
+                    one.overlap
+                ),
                 (d.value, d.lower, d.upper, d.point_a, d.point_b, d.overlap)
             );
             assert_eq!(one.stats.node_pairs, d.stats.node_pairs);
