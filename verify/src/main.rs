@@ -66,13 +66,13 @@ enum Command {
     /// failures.jsonl (verify/src/crosscheck/mod.rs states the agreement criterion).
     Crosscheck {
         /// Poses per mesh pair and eps (the full scale is 1000).
-        #[arg(long, default_value_t = verify::crosscheck::runner::DEFAULT_POSES)]
+        #[arg(long, default_value_t = verify::crosscheck::options::DEFAULT_POSES)]
         poses: usize,
         /// Poses per convex pair and eps (0: no convex checks).
-        #[arg(long, default_value_t = verify::crosscheck::runner::DEFAULT_CONVEX_POSES)]
+        #[arg(long, default_value_t = verify::crosscheck::options::DEFAULT_CONVEX_POSES)]
         convex_poses: usize,
         /// Eps of trees and meshes (repeat the flag or separate by commas).
-        #[arg(long, value_delimiter = ',', default_values_t = verify::crosscheck::runner::DEFAULT_EPS.to_vec())]
+        #[arg(long, value_delimiter = ',', default_values_t = verify::crosscheck::options::DEFAULT_EPS.to_vec())]
         eps: Vec<f64>,
         /// Output directory of the report.
         #[arg(long, default_value = "figures/crosscheck")]

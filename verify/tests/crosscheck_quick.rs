@@ -14,7 +14,7 @@ fn crosscheck_quick_slice_has_no_failures() {
     let opts = Options {
         poses: POSES,
         convex_poses: CONVEX_POSES,
-        eps: verify::crosscheck::runner::DEFAULT_EPS.to_vec(),
+        eps: verify::crosscheck::options::DEFAULT_EPS.to_vec(),
         ..Options::default()
     };
     let report = run(&opts).expect("cross-check runs");

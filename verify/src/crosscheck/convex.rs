@@ -5,8 +5,7 @@
 use super::criterion::{judge, judge_penetration, Baseline, Certified, SLACK_REL};
 use super::poses::PoseKind;
 use super::report::{CaseContext, CaseRecord, Check};
-use super::runner::scale;
-use super::shapes::Prepared;
+use super::shapes::{scale, Prepared};
 use crate::baselines::{ccd, cgal};
 use crate::queries::PoseSpec;
 use nalgebra::Point3;

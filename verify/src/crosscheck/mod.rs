@@ -68,10 +68,12 @@
 
 pub mod convex;
 pub mod criterion;
+pub mod options;
 pub mod poses;
 pub mod report;
 pub mod runner;
 pub mod shapes;
 
+pub use options::Options;
 pub use report::Report;
-pub use runner::{run, Options};
+pub use runner::run;

@@ -2,8 +2,8 @@
 //! `revdist distance --batch`.
 
 use super::criterion::{Judgement, Verdict};
+use super::options::Options;
 use super::poses::PoseKind;
-use super::runner::Options;
 use crate::queries::PoseSpec;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

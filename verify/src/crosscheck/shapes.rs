@@ -2,6 +2,7 @@
 //! of bound eps) and as a certified mesh (two-sided Hausdorff bound <= eps).
 
 use crate::baselines::TriMesh;
+use nalgebra::Isometry3;
 use revdist::profile::Profile;
 use revdist::solid::Solid;
 use revdist::tessellate::{tessellate, TessellateOptions};
@@ -59,4 +60,9 @@ pub fn prepare_profile(name: &str, profile: Profile, eps: f64) -> Result<Prepare
         centre_z,
         radius,
     })
+}
+
+/// The configuration scale of a pose (for the rounding slack).
+pub fn scale(a: &Prepared, b: &Prepared, pose: &Isometry3<f64>) -> f64 {
+    1.0 + pose.translation.vector.norm() + a.radius + b.radius + a.centre_z.abs() + b.centre_z.abs()
 }
