@@ -17,7 +17,7 @@
 use super::certify::{patch_lower_bound, CERTIFY_MAX_PAIRS};
 use super::containment::point_in_solid;
 use super::patch::Patch;
-use super::patch_bound::{patch_bounds, patch_lower, CoreMemo, PatchBounds};
+use super::patch_bound::{patch_lower, realised, CoreMemo, PatchBounds, PatchLower};
 use super::patch_distance::{patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions};
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
@@ -139,14 +139,14 @@ impl<'q> LeafPair<'q> {
             let (pa, pb) = self.patches(ia, ib);
             r.patch_bounds += 1;
             let lower = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores);
-            if lower <= 0.0 {
+            if lower.lower <= 0.0 {
                 return None;
             }
-            if lower >= prune_at {
-                r.lower = r.lower.min(lower);
+            if lower.lower >= prune_at {
+                r.lower = r.lower.min(lower.lower);
                 continue;
             }
-            let b = patch_bounds(pa, pb, self.pos_ab, &mut self.cores);
+            let b = realised(pa, pb, self.pos_ab, &lower);
             r.lower = r.lower.min(b.lower);
             r.offer(b.upper, b.point_a, b.point_b);
             if !self.settled(&b) {
@@ -168,25 +168,26 @@ impl<'q> LeafPair<'q> {
         let mut r = LeafResult::empty();
         // Cheap lower bounds first, smallest first: a pair whose bound is positive and not
         // below the best distance so far can neither lower the minimum nor interpenetrate.
-        let mut order: Vec<(f64, u32, u32)> = Vec::with_capacity(4);
+        let mut order: Vec<(PatchLower, u32, u32)> = Vec::with_capacity(4);
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
             let lower = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores);
             order.push((lower, ia, ib));
         }
         r.patch_bounds += order.len();
-        order.sort_by(|x, y| x.0.total_cmp(&y.0));
+        order.sort_by(|x, y| x.0.lower.total_cmp(&y.0.lower));
         // Subdivision precision for sampled patch pairs: the leaves' eps (a lower bound that
         // close costs no accuracy the leaves have), but not below rounding of the pose.
         let precision = (la.eps + lb.eps).max(1e-9 * (1.0 + self.pos_ab.translation.vector.norm()));
-        for (bound, ia, ib) in order {
+        for (lower, ia, ib) in order {
+            let bound = lower.lower;
             if bound > 0.0 && (bound >= r.d || bound >= prune_at) {
                 r.lower = r.lower.min(bound);
                 continue;
             }
             let (pa, pb) = self.patches(ia, ib);
             if bound > 0.0 {
-                let b = patch_bounds(pa, pb, self.pos_ab, &mut self.cores);
+                let b = realised(pa, pb, self.pos_ab, &lower);
                 if self.settled(&b) {
                     r.lower = r.lower.min(b.lower);
                     r.offer(b.upper, b.point_a, b.point_b);

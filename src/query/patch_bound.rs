@@ -88,31 +88,58 @@ impl CoreMemo {
     }
 }
 
+/// The cheap lower bound of a patch pair, with the start of a realised pair when the bound
+/// was computed in full.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchLower {
+    /// A rigorous lower bound of the patch distance.
+    pub lower: f64,
+    /// Points near the closest pair (A's frame), from which [`realised`] projects onto the
+    /// patches; `None` when the bound stopped early at the caller's pruning level.
+    near: Option<(Point3<f64>, Point3<f64>)>,
+}
+
 /// The cheap lower bound of a patch pair alone: the bounding spheres of the disks around
 /// the pieces (closed form), and, while that does not reach `prune_at`, the arcs' torus
-/// bound (or the disks' solid-torus bound when a piece is straight).
+/// bound (or the disks' solid-torus bound and the torus/cone bound when a piece is
+/// straight).
 pub fn patch_lower(
     a: &Patch,
     b: &Patch,
     pos_ab: &Isometry3<f64>,
     prune_at: f64,
     memo: &mut CoreMemo,
-) -> f64 {
+) -> PatchLower {
+    let pruned = |lower| PatchLower { lower, near: None };
     let (da, db) = (Disk::around(&a.arc), Disk::around(&b.arc));
     let spheres = sphere_bound(&da, &db, pos_ab);
     if spheres >= prune_at {
-        return spheres;
+        return pruned(spheres);
     }
-    match arc_tori(a, b, pos_ab, memo) {
-        Some(t) => spheres.max(t.lower),
+    let (lower, near_a, near_b) = match arc_tori(a, b, pos_ab, memo) {
+        Some(t) => (spheres.max(t.lower), t.near_a, t.near_b),
         None => {
             let disks = spheres.max(torus_bound(&da, &db, pos_ab));
             if disks >= prune_at {
-                return disks;
+                return pruned(disks);
             }
-            arc_cone(a, b, pos_ab).map_or(disks, |t| disks.max(t.lower))
+            match arc_cone(a, b, pos_ab) {
+                Some(t) => (disks.max(t.lower), t.near_a, t.near_b),
+                // Two cones: start from the pieces' mid points (a realised pair only).
+                None => (disks, mid_point(a), pos_ab * mid_point(b)),
+            }
         }
+    };
+    PatchLower {
+        lower,
+        near: Some((near_a, near_b)),
     }
+}
+
+/// The mid point of a patch's piece at revolution angle 0 (the patch's frame).
+fn mid_point(p: &Patch) -> Point3<f64> {
+    let m = p.arc.point_at(0.5);
+    Point3::new(m.x, 0.0, m.y)
 }
 
 /// Stage-1 bounds of a patch pair (module doc).
@@ -122,28 +149,24 @@ pub fn patch_bounds(
     pos_ab: &Isometry3<f64>,
     memo: &mut CoreMemo,
 ) -> PatchBounds {
-    let (da, db) = (Disk::around(&a.arc), Disk::around(&b.arc));
-    let spheres = sphere_bound(&da, &db, pos_ab);
-    let (lower, start_a, start_b) = match arc_tori(a, b, pos_ab, memo) {
-        Some(t) => (spheres.max(t.lower), t.near_a, t.near_b),
-        None => {
-            let disks = spheres.max(torus_bound(&da, &db, pos_ab));
-            match arc_cone(a, b, pos_ab) {
-                Some(t) => (disks.max(t.lower), t.near_a, t.near_b),
-                None => {
-                    // Two cones: start from the pieces' mid points (a realised pair only).
-                    let mid = |p: &Patch| {
-                        let m = p.arc.point_at(0.5);
-                        Point3::new(m.x, 0.0, m.y)
-                    };
-                    (disks, mid(a), pos_ab * mid(b))
-                }
-            }
-        }
-    };
+    realised(
+        a,
+        b,
+        pos_ab,
+        &patch_lower(a, b, pos_ab, f64::INFINITY, memo),
+    )
+}
+
+/// Stage-1 bounds from a lower bound already computed by [`patch_lower`]: the realised pair
+/// is projected from its start points (or from the pieces' mid points when the lower bound
+/// stopped early).
+pub fn realised(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>, lower: &PatchLower) -> PatchBounds {
+    let (start_a, start_b) = lower
+        .near
+        .unwrap_or_else(|| (mid_point(a), pos_ab * mid_point(b)));
     let (pa, pb) = realise(a, b, pos_ab, start_a, start_b);
     PatchBounds {
-        lower,
+        lower: lower.lower,
         upper: (pa - pb).norm(),
         point_a: pa,
         point_b: pb,
@@ -381,7 +404,7 @@ mod tests {
             let pose = random_pose(&mut rng, if i % 2 == 0 { 1.5 } else { 3.0 });
             let mut memo = CoreMemo::default();
             let bounds = patch_bounds(&a, &b, &pose, &mut memo);
-            let lower = patch_lower(&a, &b, &pose, f64::INFINITY, &mut memo);
+            let lower = patch_lower(&a, &b, &pose, f64::INFINITY, &mut memo).lower;
             assert_eq!(lower.to_bits(), bounds.lower.to_bits(), "case {i}");
             let exact = patch_distance(&a, &b, &pose).distance;
             let slack = 1e-10 * (1.0 + pose.translation.vector.norm());
