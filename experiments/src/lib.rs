@@ -1,6 +1,12 @@
 //! Shared pieces of the research drivers (the binaries under `src/bin/`).
 
+pub mod baseline_mesh;
+pub mod plot;
 pub mod poses;
+pub mod progress;
+pub mod provenance;
+pub mod shapes;
+pub mod stats;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
