@@ -28,7 +28,7 @@ pub fn colour(k: usize) -> RGBColor {
         RGBColor(230, 159, 0),
         RGBColor(86, 180, 233),
         RGBColor(0, 0, 0),
-        RGBColor(240, 228, 66),
+        RGBColor(120, 120, 120),
     ];
     if k < OKABE_ITO.len() {
         OKABE_ITO[k]

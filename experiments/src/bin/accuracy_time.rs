@@ -1,10 +1,10 @@
-//! What accuracy costs in time (paper section 5, Tables 1-2 and Figures 9 and 12):
-//!
-//! 1. `tree_sizes.csv` / `.md`: biarc-tree nodes, leaves, depth, bytes and build time per model
-//!    and eps (the paper's Tables 1-2 and Figure 9), including the mean over M_t frames.
-//! 2. `query_times.csv` / `.md` / `.svg`: per pair of the five paper models and per eps, the
-//!    median time of a certified distance query over seeded random poses near contact, with the
-//!    node pairs, leaf tests and certified interval width `upper - lower` (Figure 12's setting).
+//! Where a certified query spends its time (issue 11's cost model, per pair of the paper's
+//! models): `query_times.csv` / `.md` / `.svg`, per pair of the five paper models and per
+//! eps, the median time of a certified distance query over seeded random poses near contact,
+//! with the node pairs, leaf bounds, exact leaf solves, the share of time in each stage, and
+//! the certified interval width `upper - lower`. Tree sizes and build times (the paper's
+//! Tables 1-2 and Figure 9) are in `bvh_tables`; revdist against FCL in `fcl_bench`,
+//! `motion` and `pareto`.
 //!
 //! Usage: `accuracy_time [OUT_DIR] [--poses N]` (default `figures`, 200 poses per pair).
 //! Timings are wall-clock medians on whatever machine runs it; the CSV records the setting.
@@ -12,7 +12,6 @@
 use experiments::SplitMix;
 use nalgebra::{Isometry3, Translation3, Vector3};
 use plotters::prelude::*;
-use revdist::biarc::BiarcTree;
 use revdist::models;
 use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
@@ -21,104 +20,10 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// The paper's five static models (section 5, Figure 7).
-const PAPER_MODELS: [&str; 5] = ["pawn", "cup", "bottle", "table", "lightmill"];
-/// The precisions of the paper's tables.
-const EPS_LEVELS: [f64; 3] = [1e-3, 1e-4, 1e-5];
-/// M_t frames averaged for the deformable row of the tree table.
-const MORPH_FRAMES: usize = 100;
-/// Repetitions of each tree build (the median is reported).
-const BUILD_REPEATS: usize = 5;
+use experiments::shapes::{centre, PAPER_EPS as EPS_LEVELS, PAPER_MODELS};
+use experiments::stats::{median, quantile};
 /// Fixed seed: the same poses on every run.
 const SEED: u64 = 0x5eed_2020;
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n == 0 {
-        return f64::NAN;
-    }
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
-/// Radius of a ball about the profile's mid-height axis point that holds the whole solid.
-fn bounding_radius(profile: &revdist::profile::Profile) -> (f64, f64) {
-    let b = profile.bounding_box();
-    let zc = 0.5 * (b.min.y + b.max.y);
-    let half_h = 0.5 * (b.max.y - b.min.y);
-    ((b.max.x * b.max.x + half_h * half_h).sqrt(), zc)
-}
-
-struct TreeRow {
-    model: String,
-    eps: f64,
-    spirals: usize,
-    nodes: usize,
-    leaves: usize,
-    depth: usize,
-    bytes: usize,
-    build_us: f64,
-}
-
-fn tree_rows() -> Result<Vec<TreeRow>, Box<dyn std::error::Error>> {
-    let mut rows = Vec::new();
-    for &eps in &EPS_LEVELS {
-        for name in PAPER_MODELS {
-            let profile = models::model(name)?;
-            let mut times = Vec::new();
-            let mut tree = BiarcTree::build(&profile, eps)?;
-            for _ in 0..BUILD_REPEATS {
-                let t = Instant::now();
-                tree.rebuild(&profile, eps)?;
-                times.push(t.elapsed().as_secs_f64() * 1e6);
-            }
-            let s = tree.stats();
-            rows.push(TreeRow {
-                model: name.into(),
-                eps,
-                spirals: s.spirals,
-                nodes: s.nodes,
-                leaves: s.leaves,
-                depth: s.depth,
-                bytes: s.bytes,
-                build_us: median(&mut times),
-            });
-        }
-        // The deformable model: frames t = k / MORPH_FRAMES, rebuilding one tree in place.
-        let mut sums = [0.0f64; 5];
-        let mut times = Vec::new();
-        let mut tree = BiarcTree::build(&models::morph(0.0)?, eps)?;
-        for k in 0..MORPH_FRAMES {
-            let frame = models::morph(k as f64 / MORPH_FRAMES as f64)?;
-            let t = Instant::now();
-            tree.rebuild(&frame, eps)?;
-            times.push(t.elapsed().as_secs_f64() * 1e6);
-            let s = tree.stats();
-            for (acc, v) in sums
-                .iter_mut()
-                .zip([s.spirals, s.nodes, s.leaves, s.depth, s.bytes])
-            {
-                *acc += v as f64;
-            }
-        }
-        let avg = |i: usize| (sums[i] / MORPH_FRAMES as f64).round() as usize;
-        rows.push(TreeRow {
-            model: "M_t (mean)".into(),
-            eps,
-            spirals: avg(0),
-            nodes: avg(1),
-            leaves: avg(2),
-            depth: avg(3),
-            bytes: avg(4),
-            build_us: median(&mut times),
-        });
-    }
-    Ok(rows)
-}
 
 struct QueryRow {
     a: String,
@@ -145,7 +50,8 @@ fn query_rows(poses: usize) -> Result<Vec<QueryRow>, Box<dyn std::error::Error>>
             .iter()
             .map(|name| {
                 let p = models::model(name)?;
-                let r = bounding_radius(&p);
+                let (z, r) = centre(&p);
+                let r = (r, z);
                 Ok((Solid::from_profile(Arc::new(p), eps)?, r))
             })
             .collect::<Result<_, Box<dyn std::error::Error>>>()?;
@@ -186,7 +92,7 @@ fn query_rows(poses: usize) -> Result<Vec<QueryRow>, Box<dyn std::error::Error>>
                     width = width.max(d.upper - d.lower);
                 }
                 let n = poses as f64;
-                let median_us = median(&mut times); // sorts `times`
+                let median_us = median(&times);
                 rows.push(QueryRow {
                     a: PAPER_MODELS[i].into(),
                     b: PAPER_MODELS[j].into(),
@@ -194,7 +100,7 @@ fn query_rows(poses: usize) -> Result<Vec<QueryRow>, Box<dyn std::error::Error>>
                     queries: poses,
                     overlaps,
                     median_us,
-                    p90_us: times[(0.9 * (n - 1.0)).round() as usize],
+                    p90_us: quantile(&times, 0.9),
                     node_pairs: pairs / n,
                     leaf_bounds: bounded / n,
                     leaf_tests: leaves / n,
@@ -209,47 +115,13 @@ fn query_rows(poses: usize) -> Result<Vec<QueryRow>, Box<dyn std::error::Error>>
     Ok(rows)
 }
 
-fn write_tree_outputs(out: &std::path::Path, rows: &[TreeRow]) -> std::io::Result<()> {
-    let mut csv = String::from("model,eps,spirals,nodes,leaves,depth,bytes,build_us_median\n");
-    for r in rows {
-        writeln!(
-            csv,
-            "{},{:e},{},{},{},{},{},{:.3}",
-            r.model, r.eps, r.spirals, r.nodes, r.leaves, r.depth, r.bytes, r.build_us
-        )
-        .unwrap();
-    }
-    std::fs::write(out.join("tree_sizes.csv"), csv)?;
-    let mut md = String::from(
-        "# Biarc-tree sizes and build times (paper Tables 1-2, Figure 9)\n\n\
-         Generated by `experiments/src/bin/accuracy_time.rs`; build time is the median of \
-         in-place rebuilds on the machine that ran it.\n\n\
-         | model | eps | spirals | nodes | leaves | depth | KiB | build (us) |\n\
-         | --- | --- | --- | --- | --- | --- | --- | --- |\n",
-    );
-    for r in rows {
-        writeln!(
-            md,
-            "| {} | {:.0e} | {} | {} | {} | {} | {:.1} | {:.1} |",
-            r.model,
-            r.eps,
-            r.spirals,
-            r.nodes,
-            r.leaves,
-            r.depth,
-            r.bytes as f64 / 1024.0,
-            r.build_us
-        )
-        .unwrap();
-    }
-    std::fs::write(out.join("tree_sizes.md"), md)
-}
-
 fn write_query_outputs(
     out: &std::path::Path,
     rows: &[QueryRow],
+    prov: &experiments::provenance::Provenance,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let mut csv = String::from(
+    let mut csv = prov.csv_preamble();
+    csv.push_str(
         "a,b,eps,queries,overlaps,median_us,p90_us,mean_node_pairs,mean_leaf_bounds,mean_exact_leaves,mean_exact_patches,time_share_leaf_bounds,time_share_exact,max_upper_minus_lower\n",
     );
     for r in rows {
@@ -304,6 +176,7 @@ fn write_query_outputs(
             r.queries
         )?;
     }
+    md.push_str(&prov.markdown_footer());
     std::fs::write(out.join("query_times.md"), md)?;
 
     let path = out.join("query_times.svg");
@@ -381,13 +254,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     std::fs::create_dir_all(&out)?;
-    let trees = tree_rows()?;
-    write_tree_outputs(&out, &trees)?;
     let queries = query_rows(poses)?;
-    write_query_outputs(&out, &queries)?;
+    let prov = experiments::provenance::Provenance::collect(
+        "accuracy_time (query cost per pair)",
+        &[
+            ("poses_per_pair", poses.to_string()),
+            ("seed", format!("{SEED:#x}")),
+            (
+                "tolerance",
+                "default (Trees: upper - lower <= eps_a + eps_b)".into(),
+            ),
+        ],
+    );
+    write_query_outputs(&out, &queries, &prov)?;
     println!(
-        "wrote tree_sizes.{{csv,md}} ({} rows) and query_times.{{csv,md,svg}} ({} rows) to {}",
-        trees.len(),
+        "wrote query_times.{{csv,md,svg}} ({} rows) to {}",
         queries.len(),
         out.display()
     );

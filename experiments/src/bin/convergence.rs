@@ -2,13 +2,15 @@
 //! against the number of elements for every built-in model, G1 biarcs (joint on the curve,
 //! notes `biarcs.md` section 1.4) against chords (a polyline), with fitted log-log slopes.
 //!
-//! Each spiral of a model is cut into `m` equal-parameter pieces (m = 1, 2, 4, ..., 64); a
+//! Each spiral of a model is cut into `m` equal-parameter pieces (m = 1, 2, 4, ..., 16, or 64
+//! with `--paper`); a
 //! piece gets one biarc (2 arcs) or 2 chords, so both methods use the same element count. The
 //! error is the densely sampled two-sided Hausdorff distance (max over pieces); the biarcs'
 //! guaranteed bound is written next to it. Slopes are least-squares fits of log(error) on
 //! log(elements) over `m >= FIT_MIN_PIECES` (the asymptotic range).
 //!
-//! Usage: `cargo run --release -p experiments --bin convergence [OUT_DIR]` (default `figures`);
+//! Usage: `cargo run --release -p experiments --bin convergence [OUT_DIR] [--paper]` (default
+//! `figures`; `--paper` refines to 64 pieces per spiral with twice the samples);
 //! writes `OUT_DIR/convergence.csv` and `OUT_DIR/convergence.svg`.
 
 use std::fmt::Write as _;
@@ -20,12 +22,16 @@ use revdist::biarc::{fit_biarc, Arc, BiarcTree, CurveSample};
 use revdist::models;
 use revdist::profile::Profile;
 
-/// Pieces per spiral: 2^0 .. 2^MAX_LEVEL.
-const MAX_LEVEL: u32 = 6;
+/// Pieces per spiral: 2^0 .. 2^MAX_LEVEL (default run; the slope is fitted on 4, 8, 16).
+const MAX_LEVEL: u32 = 4;
+/// Finest level with `--paper` (slopes fitted on 4..64 pieces per spiral).
+const PAPER_MAX_LEVEL: u32 = 6;
 /// Smallest pieces-per-spiral used in the slope fit (coarser levels are pre-asymptotic).
 const FIT_MIN_PIECES: usize = 4;
 /// Samples per piece and per element for the sampled Hausdorff distance.
-const SAMPLES: usize = 64;
+/// (Each element's farthest point is then refined by golden-section search, so the estimate
+/// is accurate to far below the errors plotted; `--paper` doubles it.)
+const SAMPLES: usize = 32;
 /// Errors below this are rounding noise (straight or circular pieces approximate exactly) and
 /// are left out of the fit and the log plot.
 const NOISE_FLOOR: f64 = 1e-13;
@@ -40,11 +46,15 @@ struct Row {
     max_bound: f64,
 }
 
-fn study(name: &str, profile: &Profile) -> Result<Vec<Row>, Box<dyn std::error::Error>> {
+fn study(
+    name: &str,
+    profile: &Profile,
+    (max_level, samples): (u32, usize),
+) -> Result<Vec<Row>, Box<dyn std::error::Error>> {
     // Any eps gives the same spirals; the tree is only used for its segmentation.
     let tree = BiarcTree::build(profile, 1e-2)?;
     let mut rows = Vec::new();
-    for level in 0..=MAX_LEVEL {
+    for level in 0..=max_level {
         let m = 1usize << level;
         let (mut e_biarc, mut b_biarc, mut e_chord) = (0.0f64, 0.0f64, 0.0f64);
         let mut elements = 0;
@@ -56,7 +66,7 @@ fn study(name: &str, profile: &Profile) -> Result<Vec<Row>, Box<dyn std::error::
                 let b = t0 + (t1 - t0) * (i + 1) as f64 / m as f64;
                 let (sa, sb) = (CurveSample::at(curve, a), CurveSample::at(curve, b));
                 let fit = fit_biarc(curve, &sa, &sb)?;
-                e_biarc = e_biarc.max(sampled_hausdorff(curve, a, b, &fit.arcs, SAMPLES));
+                e_biarc = e_biarc.max(sampled_hausdorff(curve, a, b, &fit.arcs, samples));
                 b_biarc = b_biarc.max(fit.eps);
                 let mid = CurveSample::at(curve, 0.5 * (a + b));
                 let chords: Vec<Arc> = [(&sa, &mid), (&mid, &sb)]
@@ -65,7 +75,7 @@ fn study(name: &str, profile: &Profile) -> Result<Vec<Row>, Box<dyn std::error::
                         Arc::from_point_tangent_point(p.point, q.point - p.point, q.point)
                     })
                     .collect();
-                e_chord = e_chord.max(sampled_hausdorff(curve, a, b, &chords, SAMPLES));
+                e_chord = e_chord.max(sampled_hausdorff(curve, a, b, &chords, samples));
                 elements += 2;
             }
         }
@@ -89,37 +99,74 @@ fn slope(rows: &[&Row]) -> Option<f64> {
     let pts: Vec<(f64, f64)> = rows
         .iter()
         .filter(|r| r.pieces_per_spiral >= FIT_MIN_PIECES && r.max_error > NOISE_FLOOR)
-        .map(|r| ((r.elements as f64).log10(), r.max_error.log10()))
+        .map(|r| (r.elements as f64, r.max_error))
         .collect();
     if pts.len() < 3 {
         return None;
     }
-    let n = pts.len() as f64;
-    let (mx, my) = (
-        pts.iter().map(|p| p.0).sum::<f64>() / n,
-        pts.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-    Some(sxy / sxx)
+    experiments::stats::log_log_slope(&pts)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let out_dir = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "figures".into()));
+    let mut out_dir = PathBuf::from("figures");
+    let mut setting = (MAX_LEVEL, SAMPLES);
+    for a in std::env::args().skip(1) {
+        match a.as_str() {
+            "--paper" => setting = (PAPER_MAX_LEVEL, 2 * SAMPLES),
+            "-h" | "--help" => {
+                println!("usage: convergence [OUT_DIR] [--paper]");
+                return Ok(());
+            }
+            s if s.starts_with('-') => {
+                return Err(format!("unknown argument '{s}' (try --help)").into())
+            }
+            s => out_dir = PathBuf::from(s),
+        }
+    }
     std::fs::create_dir_all(&out_dir)?;
     let mut names: Vec<String> = models::model_names()
         .iter()
         .map(|s| s.to_string())
         .collect();
     names.push("morph@0.5".into());
+    // Freeform cubic B-spline variants of the paper's models, when the build has them.
+    for m in experiments::shapes::PAPER_MODELS {
+        let ff = format!("{m}_ff");
+        if models::model(&ff).is_ok() && !names.contains(&ff) {
+            names.push(ff);
+        }
+    }
+    // Models are independent: study them on all cores (results are deterministic).
+    use rayon::prelude::*;
+    let bar = experiments::progress::bar(names.len() as u64, "convergence");
+    let per_model: Vec<Result<(Vec<Row>, f64), String>> = names
+        .par_iter()
+        .map(|name| {
+            let t = std::time::Instant::now();
+            let profile = models::model(name).map_err(|e| e.to_string())?;
+            let rows = study(name, &profile, setting).map_err(|e| format!("{name}: {e}"))?;
+            bar.inc(1);
+            Ok((rows, t.elapsed().as_secs_f64()))
+        })
+        .collect();
+    bar.finish_and_clear();
     let mut rows = Vec::new();
-    for name in &names {
-        let profile = models::model(name)?;
-        rows.extend(study(name, &profile)?);
+    for (name, r) in names.iter().zip(per_model) {
+        let (r, secs) = r?;
+        eprintln!("{name:>12}: {secs:.1} s");
+        rows.extend(r);
     }
 
-    let mut csv =
-        String::from("model,method,pieces_per_spiral,elements,max_error,max_bound,fitted_slope\n");
+    let prov = experiments::provenance::Provenance::collect(
+        "convergence (biarcs vs chords)",
+        &[
+            ("max_level", setting.0.to_string()),
+            ("samples_per_element", setting.1.to_string()),
+            ("fit_min_pieces", FIT_MIN_PIECES.to_string()),
+        ],
+    );
+    let mut csv = prov.csv_preamble();
+    csv.push_str("model,method,pieces_per_spiral,elements,max_error,max_bound,fitted_slope\n");
     let mut slopes = Vec::new();
     for name in &names {
         for method in ["biarc", "chord"] {
@@ -155,7 +202,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             None => println!("{name:>10} {method:>6} slope n/a (error at rounding level: exact)"),
         }
     }
-    draw(&out_dir.join("convergence.svg"), &names, &rows)?;
+    // Two panels: shapes drawn with exact lines and arcs, and freeform B-spline shapes.
+    let (freeform, exact): (Vec<String>, Vec<String>) = names
+        .iter()
+        .cloned()
+        .partition(|n| n.ends_with("_ff") || n.starts_with("morph@"));
+    draw(
+        &out_dir.join("convergence.svg"),
+        &[
+            ("built-in models (exact lines and arcs)", exact),
+            ("freeform cubic B-spline models", freeform),
+        ],
+        &rows,
+        &slopes,
+    )?;
     println!(
         "wrote {} and {}",
         out_dir.join("convergence.csv").display(),
@@ -164,7 +224,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-fn draw(path: &PathBuf, names: &[String], rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
+type Slopes = [(String, &'static str, Option<f64>)];
+
+fn draw(
+    path: &PathBuf,
+    panels: &[(&str, Vec<String>)],
+    rows: &[Row],
+    slopes: &Slopes,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use experiments::plot::{colour, log_tick, CAPTION, FONT, LABEL, TICK};
     let shown: Vec<&Row> = rows.iter().filter(|r| r.max_error > NOISE_FLOOR).collect();
     let (xmin, xmax) = shown.iter().fold((f64::MAX, 0.0f64), |(a, b), r| {
         (a.min(r.elements as f64), b.max(r.elements as f64))
@@ -172,68 +240,86 @@ fn draw(path: &PathBuf, names: &[String], rows: &[Row]) -> Result<(), Box<dyn st
     let (ymin, ymax) = shown.iter().fold((f64::MAX, 0.0f64), |(a, b), r| {
         (a.min(r.max_error), b.max(r.max_error))
     });
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    let slope_of = |name: &str, method: &str| {
+        slopes
+            .iter()
+            .find(|(n, m, _)| n == name && *m == method)
+            .and_then(|s| s.2)
+    };
+    let root = SVGBackend::new(path, (1400, 640)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Hausdorff error vs elements: biarcs (solid) and chords (dashed)",
-            ("sans-serif", 18),
-        )
-        .margin(10)
-        .margin_right(40)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(
-            (xmin * 0.8..xmax * 1.25).log_scale(),
-            (ymin * 0.5..ymax * 2.0).log_scale(),
-        )?;
-    chart
-        .configure_mesh()
-        .x_desc("elements (arcs or chords)")
-        .y_desc("max sampled Hausdorff error")
-        .x_label_formatter(&|v| format!("{v:.0}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .label_style(("sans-serif", 13))
-        .draw()?;
-    for (i, name) in names.iter().enumerate() {
-        let color = Palette99::pick(i).to_rgba();
-        for method in ["biarc", "chord"] {
-            let pts: Vec<(f64, f64)> = shown
-                .iter()
-                .filter(|r| &r.model == name && r.method == method)
-                .map(|r| (r.elements as f64, r.max_error))
-                .collect();
-            if pts.is_empty() {
-                continue;
-            }
-            let style = ShapeStyle::from(&color).stroke_width(2);
-            if method == "biarc" {
-                chart
-                    .draw_series(LineSeries::new(pts.clone(), style))?
-                    .label(name.as_str())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-            } else {
-                let series = chart.draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))?;
-                // models approximated exactly by biarcs have only a chord curve: label it
-                if !shown
+    let (title, body) = root.split_vertically(36);
+    title.draw(&Text::new(
+        "Hausdorff error vs elements: biarcs (solid) and chords (dashed); legend: fitted slopes biarcs / chords",
+        (200, 8),
+        (FONT, CAPTION),
+    ))?;
+    let areas = body.split_evenly((1, panels.len()));
+    for ((caption, names), area) in panels.iter().zip(areas.iter()) {
+        let mut chart = ChartBuilder::on(area)
+            .caption(*caption, (FONT, LABEL + 2))
+            .margin(10)
+            .margin_right(30)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(
+                (xmin * 0.8..xmax * 1.25).log_scale(),
+                (ymin * 0.5..ymax * 2.0).log_scale(),
+            )?;
+        chart
+            .configure_mesh()
+            .x_desc("elements (arcs or chords)")
+            .y_desc("max sampled Hausdorff error (model units)")
+            .x_label_formatter(&|v| log_tick(v))
+            .y_label_formatter(&|v| log_tick(v))
+            .label_style((FONT, TICK))
+            .axis_desc_style((FONT, LABEL))
+            .draw()?;
+        for (i, name) in names.iter().enumerate() {
+            let color = colour(i);
+            let fmt = |s: Option<f64>| {
+                s.map(|v| format!("{v:.2}"))
+                    .unwrap_or_else(|| "exact".into())
+            };
+            let label = format!(
+                "{name}: {} / {}",
+                fmt(slope_of(name, "biarc")),
+                fmt(slope_of(name, "chord"))
+            );
+            let mut labelled = false;
+            for method in ["biarc", "chord"] {
+                let pts: Vec<(f64, f64)> = shown
                     .iter()
-                    .any(|r| &r.model == name && r.method == "biarc")
-                {
-                    series
-                        .label(format!("{name} (chords only; biarcs exact)"))
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+                    .filter(|r| &r.model == name && r.method == method)
+                    .map(|r| (r.elements as f64, r.max_error))
+                    .collect();
+                if pts.is_empty() {
+                    continue;
                 }
+                let style = ShapeStyle::from(&color).stroke_width(2);
+                let series = if method == "biarc" {
+                    chart.draw_series(LineSeries::new(pts.clone(), style))?
+                } else {
+                    chart.draw_series(DashedLineSeries::new(pts.clone(), 6, 4, style))?
+                };
+                if !labelled {
+                    series.label(label.clone()).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
+                    labelled = true;
+                }
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
             }
-            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
         }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font((FONT, TICK))
+            .draw()?;
+        // Legend key: what the two numbers are.
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 12))
-        .draw()?;
     root.present()?;
     Ok(())
 }
