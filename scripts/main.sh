@@ -1,15 +1,55 @@
 #!/usr/bin/env bash
-# The main job: regenerates every figure and table under figures/.
+# The main job: regenerates every figure and table under figures/ (issue 13), revdist and the
+# real baselines (FCL, libccd, CGAL) measured in the same run.
+#
+#   bash scripts/main.sh           # default scale: about 15 minutes of runs on 2 cores
+#   bash scripts/main.sh --paper   # paper scale (50,000 motion frames, 1,000 poses per pair, ...): hours
+#
+# Every CSV starts with '# key: value' provenance lines (machine, git commit, parameters).
+# Timing steps run one query at a time; steps that only check or sample use all cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+paper=()
+case "${1:-}" in
+    "") ;;
+    --paper) paper=(--paper) ;;
+    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    *) echo "error: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+esac
+
 scripts/deps.sh
 cargo build --release --workspace
 out=figures
 mkdir -p "$out"
-target/release/revdist figures --out "$out"          # model profiles and M_t frames
-target/release/convergence "$out"                    # biarc vs chord convergence (CSV + SVG)
-target/release/accuracy_time "$out"                  # tree sizes, certified query times (CSV + MD + SVG)
-target/release/fcl_bench --out "$out"                # revdist vs FCL OBBRSS/RSS at equal eps (CSV + MD), ~6 min
-target/release/verify crosscheck --out "$out/crosscheck"   # revdist vs FCL, CGAL, libccd on certified meshes (MD + CSV)
-target/release/patch_kernels "$out"                  # leaf kernels: time per patch pair, misses near contact
-echo "figures and tables written to $out/"
+bin=target/release
+timing="$out/main_timing.txt"
+echo "# scripts/main.sh ${paper[*]:-} on $(date -u +%Y-%m-%dT%H:%M:%SZ), commit $(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)" > "$timing"
+
+step() {  # step NAME COMMAND...: run, time, record
+    local name=$1; shift
+    echo "== $name" >&2
+    local t0=$SECONDS
+    "$@"
+    echo "$name $((SECONDS - t0)) s" | tee -a "$timing" >&2
+}
+
+if [ ${#paper[@]} -eq 0 ]; then
+    fcl_poses=(--poses 100 --poses-1e-5 50); query_poses=(--poses 100); cross=(--poses 30)
+else
+    fcl_poses=(--full); query_poses=(--poses 1000); cross=(--poses 1000)
+fi
+
+step profiles     $bin/revdist figures --out "$out"                          # model profiles, M_t frames
+step convergence  $bin/convergence "$out" "${paper[@]}"                       # biarcs n^-3 vs chords n^-2
+step bvh_tables   $bin/bvh_tables --out "$out" "${paper[@]}"                  # Tables 1-2, Figure 9
+step query_times  $bin/accuracy_time "$out" "${query_poses[@]}"               # where a query spends its time
+step fcl_bench    $bin/fcl_bench --out "$out" "${fcl_poses[@]}"               # speed ratios vs FCL on close poses
+step motion       $bin/motion --out "$out" "${paper[@]}"                      # Figure 12: 15 pairs in continuous motion
+step deforming    $bin/deforming --out "$out" "${paper[@]}"                   # Figure 8: static models vs M_t
+step pareto       $bin/pareto --out "$out" "${paper[@]}"                      # accuracy vs time, build, memory
+step stability    $bin/stability --out "$out" "${paper[@]}"                   # degenerate families, exact references
+step crosscheck   $bin/verify crosscheck --out "$out/crosscheck" "${cross[@]}"  # vs FCL, CGAL, libccd
+step kernels      $bin/patch_kernels "$out"                                  # leaf kernels near contact
+echo "total $SECONDS s" | tee -a "$timing" >&2
+echo "figures and tables written to $out/ (step times in $timing)"

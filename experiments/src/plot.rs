@@ -69,6 +69,49 @@ pub fn grouped_bars(
     group_notes: Option<&[String]>,
     size: (u32, u32),
 ) -> PlotResult {
+    let colours: Vec<RGBColor> = (0..series.len()).map(colour).collect();
+    grouped_bars_coloured(
+        path,
+        caption,
+        categories,
+        series,
+        &colours,
+        y_desc,
+        log,
+        group_notes,
+        size,
+    )
+}
+
+/// Shades of one hue, light to dark, for `n` bars of one method (e.g. one per eps).
+pub fn shades(base: RGBColor, n: usize) -> Vec<RGBColor> {
+    (0..n)
+        .map(|k| {
+            // Mix towards white: the first is lightest, the last is `base`.
+            let w = if n > 1 {
+                0.6 * (n - 1 - k) as f64 / (n - 1) as f64
+            } else {
+                0.0
+            };
+            let mix = |c: u8| (c as f64 + (255.0 - c as f64) * w).round() as u8;
+            RGBColor(mix(base.0), mix(base.1), mix(base.2))
+        })
+        .collect()
+}
+
+/// [`grouped_bars`] with one colour per series (e.g. [`shades`] of one hue per method).
+#[allow(clippy::too_many_arguments)]
+pub fn grouped_bars_coloured(
+    path: &Path,
+    caption: &str,
+    categories: &[String],
+    series: &[BarSeries],
+    colours: &[RGBColor],
+    y_desc: &str,
+    log: bool,
+    group_notes: Option<&[String]>,
+    size: (u32, u32),
+) -> PlotResult {
     let root = SVGBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE)?;
     let legend_w = 170;
@@ -112,7 +155,7 @@ pub fn grouped_bars(
                     .axis_desc_style((FONT, LABEL))
                     .draw()?;
                 for (j, s) in series.iter().enumerate() {
-                    let c = colour(j);
+                    let c = colours.get(j).copied().unwrap_or_else(|| colour(j));
                     chart.draw_series(s.values.iter().enumerate().filter_map(|(k, &v)| {
                         (v.is_finite() && (!is_log || v > 0.0)).then(|| {
                             let (x0, x1) = bar(k, j);
@@ -166,7 +209,11 @@ pub fn grouped_bars(
         let y = 50 + 24 * j as i32;
         legend_area.draw(&Rectangle::new(
             [(6, y - 6), (24, y + 6)],
-            colour(j).filled(),
+            colours
+                .get(j)
+                .copied()
+                .unwrap_or_else(|| colour(j))
+                .filled(),
         ))?;
         legend_area.draw(&Text::new(s.name.clone(), (30, y - 7), (FONT, LABEL)))?;
     }

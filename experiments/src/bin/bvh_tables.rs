@@ -18,7 +18,7 @@
 //! `bvh_tables.md` and `build_time.svg` (default `figures`).
 
 use experiments::baseline_mesh::Layout;
-use experiments::plot::{grouped_bars, BarSeries};
+use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
 use experiments::progress;
 use experiments::provenance::Provenance;
 use experiments::shapes::{query_tree_bytes, PAPER_EPS, PAPER_MODELS};
@@ -441,11 +441,14 @@ fn draw_build_times(
         .iter()
         .map(|c| c.replace(" (mean)", ""))
         .collect();
-    grouped_bars(
+    let mut colours = shades(colour(0), PAPER_EPS.len());
+    colours.extend(shades(colour(1), PAPER_EPS.len()));
+    grouped_bars_coloured(
         path,
         "BVH construction time: revdist tree vs FCL (certified mesh + OBBRSS)",
         &labels,
         &series,
+        &colours,
         "build time (ms)",
         true,
         None,
