@@ -1,5 +1,6 @@
 //! Shared pieces of the research drivers (the binaries under `src/bin/`).
 
+pub mod args;
 pub mod baseline_mesh;
 pub mod plot;
 pub mod poses;

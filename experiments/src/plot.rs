@@ -221,6 +221,175 @@ pub fn grouped_bars_coloured(
     Ok(())
 }
 
+/// One curve of a log-log chart: a method's points (drawn in order), in colour and marker
+/// `style` ([`colour`]; markers cycle circle, square, triangle, diamond, cross), dashed or solid.
+pub struct Curve {
+    pub name: String,
+    pub style: usize,
+    pub dashed: bool,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One panel of [`log_log_panels`]: a title and its curves.
+pub struct Panel {
+    pub title: String,
+    pub curves: Vec<Curve>,
+}
+
+/// Decade-aligned range holding every positive value of `v` (`(0.1, 10)` when there is none).
+fn decades(v: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = v
+        .filter(|x| x.is_finite() && *x > 0.0)
+        .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
+    if lo > hi {
+        return (0.1, 10.0);
+    }
+    let (l, h) = (lo.log10().floor(), hi.log10().ceil());
+    (10f64.powf(l), 10f64.powf(if h > l { h } else { l + 1.0 }))
+}
+
+/// Draws marker `style` of colour `c` at the points (a plotters series per marker shape).
+fn draw_markers<DB: DrawingBackend, X, Y>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
+    points: &[(f64, f64)],
+    style: usize,
+    c: RGBColor,
+) -> PlotResult
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+    DB::ErrorType: 'static,
+{
+    let fill = c.filled();
+    let pts = points.iter().copied();
+    match style % 5 {
+        0 => chart.draw_series(pts.map(|p| Circle::new(p, 4, fill)))?,
+        1 => chart.draw_series(
+            pts.map(|p| EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], fill)),
+        )?,
+        2 => chart.draw_series(pts.map(|p| TriangleMarker::new(p, 6, fill)))?,
+        3 => chart.draw_series(pts.map(|p| {
+            EmptyElement::at(p) + Polygon::new(vec![(0, -6), (6, 0), (0, 6), (-6, 0)], fill)
+        }))?,
+        _ => chart.draw_series(pts.map(|p| Cross::new(p, 5, c.stroke_width(2))))?,
+    };
+    Ok(())
+}
+
+/// Panels of log-log curves side by side, sharing decade-aligned axis ranges (so the panels
+/// compare at a glance), under one caption, with one legend of every distinct curve name to
+/// the right, in the order of the first panel's curves. Earlier curves are drawn on top of
+/// later ones. Non-positive or non-finite points are left out. `panel` is one panel's size.
+pub fn log_log_panels(
+    path: &Path,
+    caption: &str,
+    panels: &[Panel],
+    x_desc: &str,
+    y_desc: &str,
+    panel: (u32, u32),
+) -> PlotResult {
+    let legend_w = 230;
+    let size = (
+        panel.0 * panels.len().max(1) as u32 + legend_w,
+        panel.1 + 40,
+    );
+    let root = SVGBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE)?;
+    let body = root.titled(caption, (FONT, CAPTION))?;
+    let (plots, legend_area) = body.split_horizontally(size.0 - legend_w);
+    let all = || {
+        panels
+            .iter()
+            .flat_map(|p| p.curves.iter())
+            .flat_map(|c| c.points.iter().copied())
+            .filter(|(x, y)| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
+    };
+    let (x_lo, x_hi) = decades(all().map(|p| p.0));
+    let (y_lo, y_hi) = decades(all().map(|p| p.1));
+    for (area, p) in plots
+        .split_evenly((1, panels.len().max(1)))
+        .iter()
+        .zip(panels)
+    {
+        let mut chart = ChartBuilder::on(area)
+            .caption(&p.title, (FONT, LABEL + 2))
+            .margin(10)
+            .margin_right(18)
+            .x_label_area_size(52)
+            .y_label_area_size(70)
+            .build_cartesian_2d((x_lo..x_hi).log_scale(), (y_lo..y_hi).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_label_formatter(&|v: &f64| log_tick(v))
+            .y_label_formatter(&|v: &f64| log_tick(v))
+            .x_desc(x_desc)
+            .y_desc(y_desc)
+            .label_style((FONT, TICK))
+            .axis_desc_style((FONT, LABEL))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(200, 200, 200))
+            .draw()?;
+        // Reverse order: the first curves end up on top where curves coincide.
+        for c in p.curves.iter().rev() {
+            let pts: Vec<(f64, f64)> = c
+                .points
+                .iter()
+                .copied()
+                .filter(|(x, y)| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
+                .collect();
+            let col = colour(c.style);
+            let line = col.stroke_width(2);
+            if c.dashed {
+                chart.draw_series(DashedLineSeries::new(pts.clone(), 7, 4, line))?;
+            } else {
+                chart.draw_series(LineSeries::new(pts.clone(), line))?;
+            }
+            draw_markers(&mut chart, &pts, c.style, col)?;
+        }
+    }
+    let mut seen: Vec<(&str, usize, bool)> = Vec::new();
+    for c in panels.iter().flat_map(|p| p.curves.iter()) {
+        if !seen.iter().any(|s| s.0 == c.name) {
+            seen.push((&c.name, c.style, c.dashed));
+        }
+    }
+    for (k, (name, style, dashed)) in seen.into_iter().enumerate() {
+        let y = 60 + 26 * k as i32;
+        let col = colour(style);
+        let (x0, x1) = (8, 44);
+        let step = if dashed { 11 } else { x1 - x0 };
+        for x in (x0..x1).step_by(step as usize) {
+            let seg = [(x, y), ((x + if dashed { 7 } else { step }).min(x1), y)];
+            legend_area.draw(&PathElement::new(seg, col.stroke_width(2)))?;
+        }
+        let m = ((x0 + x1) / 2, y);
+        let fill = col.filled();
+        match style % 5 {
+            0 => legend_area.draw(&Circle::new(m, 4, fill))?,
+            1 => legend_area.draw(&Rectangle::new(
+                [(m.0 - 4, m.1 - 4), (m.0 + 4, m.1 + 4)],
+                fill,
+            ))?,
+            2 => legend_area.draw(&TriangleMarker::new(m, 6, fill))?,
+            3 => legend_area.draw(&Polygon::new(
+                vec![
+                    (m.0, m.1 - 6),
+                    (m.0 + 6, m.1),
+                    (m.0, m.1 + 6),
+                    (m.0 - 6, m.1),
+                ],
+                fill,
+            ))?,
+            _ => legend_area.draw(&Cross::new(m, 5, col.stroke_width(2)))?,
+        }
+        let style =
+            TextStyle::from((FONT, LABEL).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
+        legend_area.draw(&Text::new(name.to_string(), (52, y), style))?;
+    }
+    root.present()?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -231,6 +400,36 @@ mod tests {
         assert_eq!(log_tick(&0.01), "0.01");
         assert_eq!(log_tick(&1e-5), "1e-5");
         assert_eq!(log_tick(&1e4), "1e4");
+    }
+
+    #[test]
+    fn log_log_panels_write_an_svg() {
+        let dir = std::env::temp_dir().join(format!("revdist-panels-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("panels.svg");
+        let curve = |name: &str, style: usize, dashed: bool| Curve {
+            name: name.into(),
+            style,
+            dashed,
+            points: vec![(1e-3, 10.0), (1e-5, 100.0), (0.0, 5.0)],
+        };
+        let panels = vec![
+            Panel {
+                title: "left".into(),
+                curves: vec![curve("a", 0, false), curve("b", 3, true)],
+            },
+            Panel {
+                title: "right".into(),
+                curves: vec![curve("a", 0, false)],
+            },
+        ];
+        log_log_panels(&path, "cap", &panels, "x (m)", "y (us)", (300, 300)).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        assert!(svg.contains("left") && svg.contains("right") && svg.contains("x (m)"));
+        // One legend entry per distinct name.
+        assert_eq!(svg.lines().filter(|l| l.trim() == "a").count(), 1);
+        assert_eq!(decades([2e-4, 0.3].into_iter()), (1e-4, 1.0));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

@@ -30,6 +30,17 @@ pub fn us(d: Duration) -> f64 {
     d.as_secs_f64() * 1e6
 }
 
+/// A byte count for tables: `6.2 KB`, `30.8 MB`, `1.05 GB` (decimal units).
+pub fn human_bytes(b: f64) -> String {
+    if b >= 1e9 {
+        format!("{:.2} GB", b / 1e9)
+    } else if b >= 1e6 {
+        format!("{:.1} MB", b / 1e6)
+    } else {
+        format!("{:.1} KB", b / 1e3)
+    }
+}
+
 /// Least-squares slope of log(y) against log(x) over the pairs with both positive.
 pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
     let logs: Vec<(f64, f64)> = points
@@ -65,5 +76,8 @@ mod tests {
         let cubic: Vec<(f64, f64)> = (1..6).map(|k| (k as f64, (k as f64).powi(-3))).collect();
         assert!((log_log_slope(&cubic).unwrap() + 3.0).abs() < 1e-12);
         assert!(log_log_slope(&[(1.0, 1.0)]).is_none());
+        assert_eq!(human_bytes(6176.0), "6.2 KB");
+        assert_eq!(human_bytes(30_835_732.0), "30.8 MB");
+        assert_eq!(human_bytes(1.05e9), "1.05 GB");
     }
 }

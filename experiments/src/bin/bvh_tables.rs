@@ -22,7 +22,7 @@ use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
 use experiments::progress;
 use experiments::provenance::Provenance;
 use experiments::shapes::{query_tree_bytes, PAPER_EPS, PAPER_MODELS};
-use experiments::stats::{mean, median};
+use experiments::stats::{human_bytes, mean, median};
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
 use revdist::solid::Solid;
@@ -318,17 +318,6 @@ fn csv(rows: &[Row], prov: &Provenance) -> String {
     s
 }
 
-/// Human-readable bytes.
-fn bytes(b: f64) -> String {
-    if b >= 1e9 {
-        format!("{:.2} GB", b / 1e9)
-    } else if b >= 1e6 {
-        format!("{:.1} MB", b / 1e6)
-    } else {
-        format!("{:.1} KB", b / 1e3)
-    }
-}
-
 fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -350,10 +339,10 @@ fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
             "| {} | {:.0e} | {} | {} | {} | {} | {:.0}x |",
             r.model,
             r.eps,
-            bytes(r.query_bytes),
-            bytes(r.biarc_bytes),
-            bytes(r.obbrss_bytes),
-            bytes(r.rss_bytes),
+            human_bytes(r.query_bytes),
+            human_bytes(r.biarc_bytes),
+            human_bytes(r.obbrss_bytes),
+            human_bytes(r.rss_bytes),
             r.obbrss_bytes / r.query_bytes
         );
     }

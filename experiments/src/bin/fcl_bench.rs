@@ -21,8 +21,10 @@
 //! Usage: `fcl_bench [--poses N] [--poses-1e-5 N] [--eps E]... [--pairs a-b,...] [--full]
 //! [--out DIR]`. Writes `DIR/fcl_bench.csv` and `DIR/fcl_bench.md` (default `figures`).
 
-use experiments::poses::{log_uniform, pose_at_gap};
-use experiments::SplitMix;
+use experiments::args as cli;
+use experiments::baseline_mesh::agrees_with_fcl;
+use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
+use experiments::stats::human_bytes;
 use nalgebra::Isometry3;
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
@@ -35,7 +37,6 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 use verify::baselines::fcl::{Bv, FclMesh};
 use verify::baselines::TriMesh;
-use verify::crosscheck::criterion::{judge, Baseline, Certified, Verdict, SLACK_REL};
 
 /// The issue-11 table.
 const DEFAULT_PAIRS: &str = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill";
@@ -49,14 +50,9 @@ const DEFAULT_POSES_FINE: usize = 100;
 /// Poses per pair with `--full`.
 const FULL_POSES: usize = 1000;
 /// Gap range of the poses (log-uniform), as in issue 11.
-const GAPS: (f64, f64) = (1e-3, 1e-1);
-/// Eps of the trees that place the poses: far below the smallest gap, so the placed gaps
-/// are within a few percent of the drawn ones at every eps of the comparison.
-const PLACEMENT_EPS: f64 = 1e-6;
+const GAPS: (f64, f64) = CLOSE_GAPS;
 /// Capped layout: longest meridian edge as a fraction of the profile's bounding-box diagonal.
 const EDGE_CAP_REL: f64 = 1.0 / 64.0;
-/// Seed of the pose generator (xor a hash of the pair name).
-const SEED: u64 = 0x12_2026;
 
 /// The torus of issue 11: R 1, r 0.25 as one exact circle.
 fn profile(name: &str) -> Result<Profile, Box<dyn std::error::Error>> {
@@ -73,13 +69,6 @@ fn profile(name: &str) -> Result<Profile, Box<dyn std::error::Error>> {
 fn diagonal(p: &Profile) -> f64 {
     let b = p.bounding_box();
     (b.max.x - b.min.x).hypot(b.max.y - b.min.y)
-}
-
-/// Mid-height axis point and a radius about it holding the solid (for pose placement).
-fn centre(p: &Profile) -> (f64, f64) {
-    let b = p.bounding_box();
-    let h = 0.5 * (b.max.y - b.min.y);
-    (0.5 * (b.min.y + b.max.y), b.max.x.hypot(h))
 }
 
 /// Bytes of the arrays a query touches in a `QueryTree`.
@@ -109,17 +98,7 @@ fn parse_args() -> Result<Args, String> {
     };
     let mut pairs = DEFAULT_PAIRS.to_string();
     let mut i = 0;
-    let value = |i: usize, flag: &str| -> Result<String, String> {
-        args.get(i + 1)
-            .cloned()
-            .ok_or_else(|| format!("{flag} needs a value"))
-    };
-    let count = |s: String, flag: &str| -> Result<usize, String> {
-        match s.parse::<usize>() {
-            Ok(n) if n > 0 => Ok(n),
-            _ => Err(format!("{flag} needs a positive integer, got '{s}'")),
-        }
-    };
+    let value = |i: usize| cli::value(&args, i);
     while i < args.len() {
         let flag = args[i].as_str();
         match flag {
@@ -129,19 +108,11 @@ fn parse_args() -> Result<Args, String> {
                 i += 1;
                 continue;
             }
-            "--poses" => a.poses = count(value(i, flag)?, flag)?,
-            "--poses-1e-5" => a.poses_fine = count(value(i, flag)?, flag)?,
-            "--eps" => {
-                let s = value(i, flag)?;
-                for e in s.split(',') {
-                    match e.trim().parse::<f64>() {
-                        Ok(e) if e.is_finite() && e > 0.0 && e < 1.0 => a.eps.push(e),
-                        _ => return Err(format!("--eps needs numbers in (0, 1), got '{e}'")),
-                    }
-                }
-            }
-            "--pairs" => pairs = value(i, flag)?,
-            "--out" => a.out = PathBuf::from(value(i, flag)?),
+            "--poses" => a.poses = cli::count(&value(i)?, flag)?,
+            "--poses-1e-5" => a.poses_fine = cli::count(&value(i)?, flag)?,
+            "--eps" => a.eps.extend(cli::eps_list(&value(i)?, flag)?),
+            "--pairs" => pairs = value(i)?,
+            "--out" => a.out = PathBuf::from(value(i)?),
             "-h" | "--help" => {
                 println!("usage: fcl_bench [--poses N] [--poses-1e-5 N] [--eps E]... [--pairs a-b,...] [--full] [--out DIR]");
                 std::process::exit(0);
@@ -153,12 +124,7 @@ fn parse_args() -> Result<Args, String> {
     if a.eps.is_empty() {
         a.eps = DEFAULT_EPS.to_vec();
     }
-    for p in pairs.split(',') {
-        let (x, y) = p
-            .split_once('-')
-            .ok_or_else(|| format!("--pairs: '{p}' is not of the form a-b"))?;
-        a.pairs.push((x.to_owned(), y.to_owned()));
-    }
+    a.pairs = cli::pairs(&pairs, "--pairs")?;
     Ok(a)
 }
 
@@ -248,24 +214,10 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut rows = Vec::new();
     for (na, nb) in &args.pairs {
         let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
-        let ((za, ra), (zb, rb)) = (centre(&pa), centre(&pb));
         // Poses placed once per pair (fine trees), reused at every eps.
         let n_max = args.poses.max(args.poses_fine);
-        let place_a = Solid::from_profile(Arc::clone(&pa), PLACEMENT_EPS)?;
-        let place_b = Solid::from_profile(Arc::clone(&pb), PLACEMENT_EPS)?;
         let pair = format!("{na}-{nb}");
-        let mut rng = SplitMix(
-            SEED ^ pair
-                .bytes()
-                .fold(0u64, |h, c| h.wrapping_mul(31) ^ u64::from(c)),
-        );
-        let mut poses: Vec<Isometry3<f64>> = Vec::with_capacity(n_max);
-        while poses.len() < n_max {
-            let gap = log_uniform(&mut rng, GAPS.0, GAPS.1);
-            if let Some(p) = pose_at_gap(&place_a, &place_b, (za, zb), ra + rb, gap, &mut rng) {
-                poses.push(p);
-            }
-        }
+        let poses = close_poses(&pa, &pb, n_max, GAPS, pair_seed(CLOSE_SEED, &pair), || {})?;
         for &eps in &args.eps {
             let n = if eps < 5e-5 {
                 args.poses_fine
@@ -378,18 +330,7 @@ fn bench_row(
                     let (la, lb) = &layouts[0];
                     let lb = lb.as_ref().unwrap_or(la);
                     let f = la.obbrss.distance(&lb.obbrss, &id, pose)?;
-                    let scale = 1.0 + pose.translation.vector.norm() + size;
-                    let base = Baseline {
-                        distance: f.distance,
-                        mesh_bounds: row.h_sum[0],
-                        slack: SLACK_REL * scale,
-                    };
-                    let rev = Certified {
-                        lower: d.lower,
-                        upper: d.upper,
-                        overlap: d.overlap,
-                    };
-                    if judge(rev, d.value, base, || false).verdict != Verdict::Passed {
+                    if !agrees_with_fcl(&d, f.distance, row.h_sum[0], pose, size) {
                         row.violations += 1;
                     }
                 }
@@ -480,17 +421,6 @@ fn csv(rows: &[Row]) -> String {
     s
 }
 
-fn human_bytes(b: usize) -> String {
-    let b = b as f64;
-    if b >= 1e9 {
-        format!("{:.2} GB", b / 1e9)
-    } else if b >= 1e6 {
-        format!("{:.1} MB", b / 1e6)
-    } else {
-        format!("{:.1} KB", b / 1e3)
-    }
-}
-
 fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
@@ -562,9 +492,9 @@ fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
             r.fcl[o].0 / r.rev_trees.0,
             r.rev_build_ms,
             r.mesh_ms[o] + r.obbrss_build_ms[o],
-            human_bytes(r.rev_bytes),
-            human_bytes(r.obbrss_bytes[o]),
-            human_bytes(r.rss_bytes[rs]),
+            human_bytes(r.rev_bytes as f64),
+            human_bytes(r.obbrss_bytes[o] as f64),
+            human_bytes(r.rss_bytes[rs] as f64),
             r.max_width,
             r.h_sum[o],
             r.violations
