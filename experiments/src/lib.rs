@@ -5,7 +5,8 @@ pub mod baseline_mesh;
 pub mod plot;
 pub mod poses;
 pub mod progress;
-pub mod provenance;
+/// Provenance lines of every CSV (lives in `verify`, which writes reports too).
+pub use verify::provenance;
 pub mod shapes;
 pub mod stats;
 

@@ -6,5 +6,6 @@ pub mod companion;
 pub mod crosscheck;
 pub mod exact_circle;
 pub mod oracle;
+pub mod provenance;
 pub mod queries;
 pub mod random_profiles;

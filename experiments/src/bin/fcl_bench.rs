@@ -237,8 +237,28 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     std::fs::create_dir_all(&args.out)?;
-    std::fs::write(args.out.join("fcl_bench.csv"), csv(&rows))?;
+    let prov = experiments::provenance::Provenance::collect(
+        "fcl_bench (revdist vs FCL at equal accuracy)",
+        &[
+            ("poses", args.poses.to_string()),
+            ("poses_eps_below_5e-5", args.poses_fine.to_string()),
+            ("eps", format!("{:?}", args.eps)),
+            (
+                "pairs",
+                args.pairs
+                    .iter()
+                    .map(|(a, b)| format!("{a}-{b}"))
+                    .collect::<Vec<_>>()
+                    .join(" "),
+            ),
+        ],
+    );
+    std::fs::write(
+        args.out.join("fcl_bench.csv"),
+        prov.csv_preamble() + &csv(&rows),
+    )?;
     let md = markdown(&rows, &args, started.elapsed());
+    let md = md + &prov.markdown_footer();
     std::fs::write(args.out.join("fcl_bench.md"), &md)?;
     print!("{md}");
     Ok(())

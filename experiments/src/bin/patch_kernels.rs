@@ -165,8 +165,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             r.kernel, r.gap, r.pairs, r.micros_per_pair, r.misses, r.worst_excess
         )?;
     }
-    std::fs::write(out.join("patch_kernels.csv"), csv)?;
-    std::fs::write(out.join("patch_kernels.md"), md)?;
+    let prov = experiments::provenance::Provenance::collect(
+        "patch_kernels (leaf kernels near contact)",
+        &[],
+    );
+    std::fs::write(out.join("patch_kernels.csv"), prov.csv_preamble() + &csv)?;
+    std::fs::write(out.join("patch_kernels.md"), md + &prov.markdown_footer())?;
     print!("{}", std::fs::read_to_string(out.join("patch_kernels.md"))?);
     Ok(())
 }

@@ -367,8 +367,25 @@ impl Report {
     /// cases) into `dir`, creating it.
     pub fn write(&self, dir: &Path) -> std::io::Result<()> {
         std::fs::create_dir_all(dir)?;
-        std::fs::write(dir.join("crosscheck.md"), self.markdown())?;
-        std::fs::write(dir.join("crosscheck.csv"), self.csv())?;
+        let o = &self.options;
+        let prov = crate::provenance::Provenance::collect(
+            "verify crosscheck",
+            &[
+                ("poses", o.poses.to_string()),
+                ("convex_poses", o.convex_poses.to_string()),
+                ("eps", format!("{:?}", o.eps)),
+                ("seed", o.seed.to_string()),
+                ("threads", self.threads.to_string()),
+            ],
+        );
+        std::fs::write(
+            dir.join("crosscheck.md"),
+            self.markdown() + &prov.markdown_footer(),
+        )?;
+        std::fs::write(
+            dir.join("crosscheck.csv"),
+            prov.csv_preamble() + &self.csv(),
+        )?;
         let failed: String = self
             .records
             .iter()
