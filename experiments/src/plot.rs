@@ -131,11 +131,8 @@ pub fn grouped_bars_coloured(
         builder
             .caption(caption, (FONT, CAPTION))
             .margin(14)
-            .x_label_area_size(if categories.iter().any(|c| c.len() > 8) {
-                70
-            } else {
-                40
-            })
+            // Category names are drawn by hand just under the axis.
+            .x_label_area_size(30)
             .y_label_area_size(70);
         let bar = |k: usize, j: usize| -> (f64, f64) {
             let w = 0.8 / n_ser as f64;
