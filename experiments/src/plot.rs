@@ -38,12 +38,18 @@ pub fn colour(k: usize) -> RGBColor {
     }
 }
 
-/// Tick label of a log axis: `1e-3`, `10`, `1e4`.
+/// Tick label of a log axis: plain numbers in [0.01, 1e4) (`0.05`, `10`, `900`), powers
+/// of ten in exponent form outside it (`1e-5`, `1e4`).
 pub fn log_tick(v: &f64) -> String {
-    let e = v.log10();
-    if (e - e.round()).abs() < 1e-9 && (-2.0..=3.0).contains(&e.round()) {
-        let s = format!("{v}");
-        s.trim_end_matches(".0").to_string()
+    let v = *v;
+    if (0.01..1e4).contains(&v) {
+        let digits = if v >= 1.0 { 0 } else { 2 };
+        let s = format!("{v:.digits$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
     } else {
         format!("{v:.0e}")
     }
@@ -397,6 +403,9 @@ mod tests {
         assert_eq!(log_tick(&0.01), "0.01");
         assert_eq!(log_tick(&1e-5), "1e-5");
         assert_eq!(log_tick(&1e4), "1e4");
+        assert_eq!(log_tick(&900.0), "900");
+        assert_eq!(log_tick(&0.05), "0.05");
+        assert_eq!(log_tick(&0.5), "0.5");
     }
 
     #[test]

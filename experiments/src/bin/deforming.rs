@@ -24,15 +24,15 @@
 use experiments::args;
 use experiments::baseline_mesh::{agrees_with_fcl, Layout};
 use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
-use experiments::poses::{log_uniform, PLACEMENT_EPS};
+use experiments::poses::{log_uniform, slide_to_gap, PLACEMENT_EPS};
 use experiments::progress;
 use experiments::provenance::Provenance;
 use experiments::shapes::{centre, diagonal, PAPER_EPS, PAPER_MODELS};
 use experiments::stats::{mean, us};
 use experiments::SplitMix;
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::Isometry3;
 use revdist::profile::Profile;
-use revdist::query::{distance, distance_cached, QueryCache, QueryOptions};
+use revdist::query::{distance_cached, QueryCache, QueryOptions};
 use revdist::solid::Solid;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -48,8 +48,6 @@ const DEFAULT_FRAMES_FINE: usize = 6;
 const PAPER_FRAMES: usize = 200;
 /// Range of the gap schedule.
 const GAPS: (f64, f64) = (2e-3, 1e-1);
-/// Bisection steps of the placement (the slide interval halves per step).
-const PLACEMENT_STEPS: usize = 60;
 /// Seed of the directions and rotations.
 const SEED: u64 = 0x0f16_0008;
 
@@ -125,49 +123,6 @@ fn gap_at(k: usize, n: usize) -> f64 {
     (GAPS.0.ln() + (GAPS.1.ln() - GAPS.0.ln()) * s).exp()
 }
 
-/// Slide M_t's frame `b` (rotation `rot`) along `dir` from X's centre until the certified
-/// gap is `gap` (to a few percent): the pose of the frame in X's frame.
-fn place(
-    x: &Solid,
-    b: &Solid,
-    (zx, zb): (f64, f64),
-    reach: f64,
-    dir: &Vector3<f64>,
-    rot: &UnitQuaternion<f64>,
-    gap: f64,
-) -> Option<Isometry3<f64>> {
-    let at = |s: f64| {
-        let t = Vector3::new(0.0, 0.0, zx) + dir * s - rot * Vector3::new(0.0, 0.0, zb);
-        Isometry3::from_parts(Translation3::from(t), *rot)
-    };
-    let opts = QueryOptions::default();
-    let gap_of = |s: f64| {
-        let d = distance(x, &b.with_pose(at(s)), &opts);
-        if d.overlap {
-            -1.0
-        } else {
-            d.value
-        }
-    };
-    let (mut lo, mut hi) = (0.0, reach + 2.0 * gap + 1.0);
-    if gap_of(hi) < gap {
-        return None;
-    }
-    for _ in 0..PLACEMENT_STEPS {
-        let mid = 0.5 * (lo + hi);
-        let g = gap_of(mid);
-        if (g - gap).abs() <= 0.05 * gap {
-            return Some(at(mid));
-        }
-        if g < gap {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    None
-}
-
 fn main() {
     if let Err(e) = run() {
         eprintln!("error: {e}");
@@ -234,8 +189,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 let ((zx, rx), (zb, rb)) = (centre(x), centre(&frame));
                 // The scheduled gap, jittered slightly so frames differ in more than t.
                 let g = gap_at(k, n) * (1.0 + 0.1 * (log_uniform(&mut rng, 1.0, 2.0) - 1.5));
-                let pose =
-                    place(&fine_x, &fine_b, (zx, zb), rx + rb, &dir, &rot, g).ok_or_else(|| {
+                let pose = slide_to_gap(&fine_x, &fine_b, (zx, zb), rx + rb, &dir, &rot, g)
+                    .ok_or_else(|| {
                         format!(
                             "could not place M_t frame {k} at gap {g:.1e} from {}",
                             PAPER_MODELS[m]
