@@ -8,6 +8,7 @@ pub mod progress;
 /// Provenance lines of every CSV (lives in `verify`, which writes reports too).
 pub use verify::provenance;
 pub mod shapes;
+pub mod stability;
 pub mod stats;
 
 use nalgebra::{UnitQuaternion, Vector3};

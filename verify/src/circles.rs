@@ -3,7 +3,9 @@
 //! (perturbed, rigidly moved) circle pairs with rational data.
 
 use crate::companion;
-use crate::exact_circle::{rotation_from_quaternion, ExactPair, RVec};
+use crate::exact_circle::{
+    rotation_from_quaternion, rotation_from_rational_quaternion, ExactPair, RVec,
+};
 use nalgebra::{Point3, Vector3};
 use revdist::circle::{binormals, min_distance, Circle3, Multiplicity};
 use rug::Rational;
@@ -149,7 +151,9 @@ impl Rng {
             }
         }
     }
-    fn motion(&mut self) -> ([RVec; 3], RVec) {
+    /// A random rigid motion: a rational rotation (integer quaternion with entries up to
+    /// 50) and a translation with components in [-10, 10] (multiples of 1/8).
+    pub fn motion(&mut self) -> ([RVec; 3], RVec) {
         let rot = rotation_from_quaternion(self.quaternion(50));
         let t = [0, 1, 2].map(|_| rat(self.int(-80, 80), 8));
         (rot, t)
@@ -232,10 +236,10 @@ pub fn scaled_case(rng: &mut Rng) -> Case {
 
 /// One catalogued configuration: (label, centre, integer rotation quaternion mapping z to
 /// the normal, radius, analytic distance when the polynomial vanishes).
-type CatalogueEntry = (&'static str, [Rational; 3], [i64; 4], Rational, Option<f64>);
+pub type CatalogueEntry = (&'static str, [Rational; 3], [i64; 4], Rational, Option<f64>);
 
-/// The degenerate catalogue (research notes section 2.1).
-fn catalogue() -> Vec<CatalogueEntry> {
+/// The degenerate catalogue (research notes section 2.1), A the unit circle.
+pub fn catalogue() -> Vec<CatalogueEntry> {
     let z = Rational::new;
     // Integer quaternions with rational rotations: (2,1,0,0) rotates z by atan(4/3) about x:
     // normal (0, -4/5, 3/5); (3,0,1,0) rotates z about y: normal (3/5, 0, 4/5).
@@ -353,6 +357,23 @@ fn catalogue() -> Vec<CatalogueEntry> {
             Rational::from(3),
             None,
         ),
+        // Exactly 8 binormals (Neff's bound), the pinned pairs of revdist's circle tests
+        // (`eight_binormals_pinned`, found by `verify eight --count 400 --seed 11 --min-gap
+        // 0.1`) scaled by 1 / ra so that A is the unit circle.
+        (
+            "8 binormals A",
+            [rat(37, 91), rat(-37, 91), rat(-38, 91)],
+            [0, -7, 1, -6],
+            rat(85, 91),
+            None,
+        ),
+        (
+            "8 binormals B",
+            [rat(-34, 87), rat(-17, 87), rat(7, 87)],
+            [-9, 9, -8, -8],
+            rat(112, 87),
+            None,
+        ),
         (
             "tangent along axis at centre",
             [Rational::from(1), z(), z()],
@@ -407,17 +428,7 @@ pub fn catalogue_cases(rng: &mut Rng, motions: usize) -> Vec<Case> {
 
 /// Rotation from the quaternion (m, 1, 0, 0) with a big rational m: angle ~2/m about x.
 fn rotation_from_quaternion_rat(m: Rational) -> [RVec; 3] {
-    let w = m;
-    let n = Rational::from(&w * &w) + 1u32;
-    let one = Rational::from(1);
-    let r11 = Rational::from(&w * &w) - &one;
-    let r11 = r11 / &n;
-    let s = Rational::from(&w * 2u32) / &n;
-    [
-        [one.clone(), Rational::new(), Rational::new()],
-        [Rational::new(), r11.clone(), s.clone()],
-        [Rational::new(), Rational::from(-&s), r11],
-    ]
+    rotation_from_rational_quaternion(&[m, Rational::from(1), Rational::new(), Rational::new()])
 }
 
 /// Outcome of one case.
@@ -768,5 +779,40 @@ mod tests {
         // 1e-14..1e-4 of a continuum the polynomial is within noise of zero, and the count
         // of its roots is not a double-precision quantity.
         assert_eq!(s.count_mismatch_random_resolvable, 0, "{s}");
+    }
+}
+
+#[cfg(test)]
+mod catalogue_tests {
+    use super::*;
+
+    /// The 8-binormal entries really have 8 binormals (exact Sturm count), and the rational
+    /// quaternion rotation agrees with the integer one.
+    #[test]
+    fn eight_binormal_entries_have_eight() {
+        let mut found = 0;
+        for (label, c, q, r, _) in catalogue() {
+            if !label.starts_with("8 binormals") {
+                continue;
+            }
+            let case = Case {
+                family: "catalogue",
+                label: label.into(),
+                ra: Rational::from(1),
+                b: RCircle::rotated(c, &rotation_from_quaternion(q), r),
+                motion: None,
+                analytic: None,
+            };
+            let res = case.exact_pair().analyse().expect("finite");
+            assert_eq!(res.root_count, 8, "{label}");
+            found += 1;
+        }
+        assert_eq!(found, 2);
+        let rq = rotation_from_rational_quaternion(&[3, -1, 2, 5].map(Rational::from));
+        assert_eq!(rq, rotation_from_quaternion([3, -1, 2, 5]));
+        // (m, 1, 0, 0) turns about x by 2 atan(1 / m).
+        let tilt = rotation_from_quaternion_rat(Rational::from(1000));
+        let angle = tilt[1][2].to_f64().atan2(tilt[1][1].to_f64());
+        assert!((angle - 2.0 * (1e-3f64).atan()).abs() < 1e-15);
     }
 }
