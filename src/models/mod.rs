@@ -1,7 +1,9 @@
 //! Built-in profiles, usable by name wherever a profile file is accepted.
 //!
 //! - The paper's five static solids (section 5, Figure 7): `pawn`, `cup`, `bottle`, `table`,
-//!   `lightmill` ([`paper`]).
+//!   `lightmill` ([`paper`]), and their freeform variants `pawn_ff`, `cup_ff`, `bottle_ff`,
+//!   `table_ff`, `lightmill_ff`: the same silhouettes as clamped cubic B-splines with many
+//!   control points, one per smooth run ([`freeform`]).
 //! - Analytic solids: `ring` (torus), `sphere`, `capsule`, `cylinder`, `cone` ([`basic`]).
 //! - The deformable model M_t of section 5 ([`mod@morph`]): by name as `morph@T` with T a number
 //!   (wrapped into [0, 1)), e.g. `morph@0.25`.
@@ -10,6 +12,8 @@
 //! the direction of travel); open profiles start at the bottom of the axis and end at its top.
 
 pub mod basic;
+mod fit;
+pub mod freeform;
 pub mod morph;
 pub mod paper;
 pub mod primitives;
@@ -17,8 +21,11 @@ pub mod sampling;
 pub mod validate;
 
 #[cfg(test)]
+mod freeform_tests;
+#[cfg(test)]
 mod tests;
 
+pub use freeform::{freeform_names, FreeformReport, FREEFORM_NAMES};
 pub use morph::{morph, Morph, MorphFitReport};
 
 use crate::nurbs::CurveError;
@@ -41,6 +48,9 @@ pub enum ModelError {
     /// Fitting the common representation of the morph keyframes failed.
     #[error("morph keyframe '{model}': {detail}")]
     MorphFit { model: String, detail: String },
+    /// Fitting a freeform variant failed (a bug in the fitter or the model tables).
+    #[error("freeform variant '{model}': {detail}")]
+    FreeformFit { model: String, detail: String },
     /// A model piece was rejected by the NURBS constructor (a bug in the model tables).
     #[error("invalid model curve: {0}")]
     Curve(#[from] CurveError),
@@ -49,7 +59,8 @@ pub enum ModelError {
     Profile(#[from] ProfileError),
 }
 
-/// Names of the built-in static models, in display order (the paper's five first).
+/// Names of the built-in static models, in display order: the paper's five, their freeform
+/// variants ([`freeform_names`]), then the analytic solids.
 pub fn model_names() -> &'static [&'static str] {
     &[
         "pawn",
@@ -57,6 +68,11 @@ pub fn model_names() -> &'static [&'static str] {
         "bottle",
         "table",
         "lightmill",
+        "pawn_ff",
+        "cup_ff",
+        "bottle_ff",
+        "table_ff",
+        "lightmill_ff",
         "ring",
         "sphere",
         "capsule",
@@ -82,21 +98,26 @@ pub fn model(name: &str) -> Result<Profile, ModelError> {
         "capsule" => basic::capsule(),
         "cylinder" => basic::cylinder(),
         "cone" => basic::cone(),
-        _ => match name.strip_prefix(MORPH_PREFIX) {
-            Some(t) => {
-                let t: f64 = t
-                    .trim()
-                    .parse()
-                    .map_err(|_| ModelError::BadMorphName(name.to_string()))?;
-                if !t.is_finite() {
-                    return Err(ModelError::BadMorphName(name.to_string()));
-                }
-                morph(t)
+        _ => {
+            if let Some(variant) = freeform::freeform(name) {
+                return variant;
             }
-            None => Err(ModelError::UnknownModel {
-                name: name.to_string(),
-                valid: model_names().join(", "),
-            }),
-        },
+            match name.strip_prefix(MORPH_PREFIX) {
+                Some(t) => {
+                    let t: f64 = t
+                        .trim()
+                        .parse()
+                        .map_err(|_| ModelError::BadMorphName(name.to_string()))?;
+                    if !t.is_finite() {
+                        return Err(ModelError::BadMorphName(name.to_string()));
+                    }
+                    morph(t)
+                }
+                None => Err(ModelError::UnknownModel {
+                    name: name.to_string(),
+                    valid: model_names().join(", "),
+                }),
+            }
+        }
     }
 }

@@ -35,11 +35,15 @@
 
 use std::sync::OnceLock;
 
-use nalgebra::{DMatrix, DVector, Point2, Vector2};
+use nalgebra::{Point2, Vector2};
 
+use super::fit::{
+    chain_tangents, fit_cubic, grid_params, midpoint_params, uniform_knots, ArcLength,
+    EndCondition, Join, Samples, FIT_DEGREE,
+};
 use super::paper;
 use super::ModelError;
-use crate::nurbs::{basis_functions, NurbsCurve};
+use crate::nurbs::NurbsCurve;
 use crate::profile::Profile;
 
 /// Number of pieces of every morph frame.
@@ -47,7 +51,7 @@ pub const MORPH_BLOCKS: usize = 16;
 /// Uniform cubic spans per piece of a morph frame.
 pub const MORPH_SPANS_PER_BLOCK: usize = 4;
 /// Degree of the morph frames' pieces.
-pub const MORPH_DEGREE: usize = 3;
+pub const MORPH_DEGREE: usize = FIT_DEGREE;
 /// Control points per piece of a morph frame.
 const POINTS_PER_BLOCK: usize = MORPH_SPANS_PER_BLOCK + MORPH_DEGREE;
 /// Keyframes in cyclic order (section 5: counter-clockwise through Figure 7 from the pawn).
@@ -64,18 +68,12 @@ pub const CLOSING_ANCHOR: [(usize, f64); 5] = [(8, 0.8), (3, 0.0), (7, 0.0), (7,
 pub const REGION_BLOCKS: [usize; 3] = [1, 11, 4];
 
 /// Tangent turn (radians) above which a join between two source pieces is a crease and the
-/// fit leaves it a free corner. The models' smooth joins agree to rounding (about 1e-15);
-/// their creases turn by at least several degrees.
-pub const CREASE_ANGLE: f64 = 1e-6;
-/// Samples per knot span of the source pieces in the arc-length table. Only the
-/// parameterisation depends on it (the fitted targets are exact curve points).
-const ARC_TABLE_SAMPLES_PER_SPAN: usize = 256;
+/// fit leaves it a free corner (shared with the freeform variants).
+pub use super::fit::CREASE_ANGLE;
 /// Least-squares samples per cubic span of a block.
 const FIT_SAMPLES_PER_SPAN: usize = 24;
 /// Samples per cubic span at which the fit error is measured.
 const ERROR_SAMPLES_PER_SPAN: usize = 64;
-/// Relative singular value cut-off of the least-squares solve.
-const LSQ_RCOND: f64 = 1e-12;
 
 /// Fit quality of one keyframe's common representation.
 #[derive(Debug, Clone, PartialEq)]
@@ -238,91 +236,7 @@ fn blend_position(t: f64) -> Result<(usize, f64), ModelError> {
 
 /// Clamped uniform cubic knot vector of one block on [0, 1].
 fn block_knots() -> Vec<f64> {
-    let mut knots = vec![0.0; MORPH_DEGREE + 1];
-    knots.extend((1..MORPH_SPANS_PER_BLOCK).map(|i| i as f64 / MORPH_SPANS_PER_BLOCK as f64));
-    knots.extend([1.0; MORPH_DEGREE + 1]);
-    knots
-}
-
-/// Arc-length table of an open profile: (piece, parameter, arc length) samples.
-struct ArcLength<'a> {
-    pieces: &'a [NurbsCurve],
-    entries: Vec<(usize, f64, f64)>,
-    /// Arc length at the end of each piece.
-    piece_ends: Vec<f64>,
-}
-
-impl<'a> ArcLength<'a> {
-    fn new(pieces: &'a [NurbsCurve]) -> Self {
-        let mut entries = Vec::new();
-        let mut piece_ends = Vec::with_capacity(pieces.len());
-        let mut s = 0.0;
-        for (i, piece) in pieces.iter().enumerate() {
-            let mut prev = piece.start();
-            entries.push((i, piece.domain().0, s));
-            for (t0, t1) in piece.distinct_spans() {
-                for k in 1..=ARC_TABLE_SAMPLES_PER_SPAN {
-                    let t = t0 + (t1 - t0) * k as f64 / ARC_TABLE_SAMPLES_PER_SPAN as f64;
-                    let p = piece.eval(t);
-                    s += (p - prev).norm();
-                    prev = p;
-                    entries.push((i, t, s));
-                }
-            }
-            piece_ends.push(s);
-        }
-        ArcLength {
-            pieces,
-            entries,
-            piece_ends,
-        }
-    }
-
-    fn total(&self) -> f64 {
-        self.piece_ends.last().copied().unwrap_or(0.0)
-    }
-
-    /// Piece and parameter at arc length s (linear interpolation in the table; the first
-    /// piece containing s wins at piece boundaries).
-    fn locate(&self, s: f64) -> (usize, f64) {
-        let idx = self.entries.partition_point(|e| e.2 < s);
-        if idx == 0 {
-            return (self.entries[0].0, self.entries[0].1);
-        }
-        if idx >= self.entries.len() {
-            let last = self.entries[self.entries.len() - 1];
-            return (last.0, last.1);
-        }
-        let (a, b) = (self.entries[idx - 1], self.entries[idx]);
-        if a.0 != b.0 || b.2 <= a.2 {
-            return (b.0, b.1);
-        }
-        let f = (s - a.2) / (b.2 - a.2);
-        (a.0, a.1 + f * (b.1 - a.1))
-    }
-
-    fn point(&self, s: f64) -> Point2<f64> {
-        let (piece, t) = self.locate(s);
-        self.pieces[piece].eval(t)
-    }
-
-    fn tangent(&self, s: f64) -> Option<Vector2<f64>> {
-        let (piece, t) = self.locate(s);
-        unit_tangent(&self.pieces[piece], t)
-    }
-}
-
-fn unit_tangent(piece: &NurbsCurve, t: f64) -> Option<Vector2<f64>> {
-    piece.derivatives(t)[1].try_normalize(f64::MIN_POSITIVE)
-}
-
-/// How a block end is joined to its neighbour.
-#[derive(Debug, Clone, Copy)]
-enum EndCondition {
-    /// Smooth: the neighbouring control point lies on this unit tangent (direction of travel).
-    Tangent(Vector2<f64>),
-    /// Crease: the neighbouring control point is free.
-    Free,
+    uniform_knots(MORPH_SPANS_PER_BLOCK)
 }
 
 /// One fitted block of a keyframe: arc-length interval, end conditions, control points and
@@ -353,32 +267,23 @@ fn fit_keyframe(
 ) -> Result<FittedKeyframe, String> {
     let pieces = source.pieces();
     let table = ArcLength::new(pieces);
-    let first = pieces.first().ok_or("empty profile")?;
-    let last = pieces.last().ok_or("empty profile")?;
     let tangent_or_err = |v: Option<Vector2<f64>>| v.ok_or("zero tangent at a block end");
+    let tangents = chain_tangents(pieces)?;
     // Conditions at s = 0, every piece boundary, and the total length.
-    let mut conditions = vec![EndCondition::Tangent(tangent_or_err(unit_tangent(
-        first,
-        first.domain().0,
-    ))?)];
+    let mut conditions = vec![EndCondition::Tangent(tangents.start)];
     let mut creases = 0;
-    for pair in pieces.windows(2) {
-        let before = tangent_or_err(unit_tangent(&pair[0], pair[0].domain().1))?;
-        let after = tangent_or_err(unit_tangent(&pair[1], pair[1].domain().0))?;
-        let turn = before.perp(&after).atan2(before.dot(&after));
-        if turn.abs() <= CREASE_ANGLE {
-            conditions.push(EndCondition::Tangent((before + after).normalize()));
-        } else {
-            creases += 1;
-            conditions.push(EndCondition::Free);
-        }
+    for join in &tangents.joins {
+        conditions.push(match *join {
+            Join::Smooth(tangent) => EndCondition::Tangent(tangent),
+            Join::Crease { .. } => {
+                creases += 1;
+                EndCondition::Free
+            }
+        });
     }
-    conditions.push(EndCondition::Tangent(tangent_or_err(unit_tangent(
-        last,
-        last.domain().1,
-    ))?));
+    conditions.push(EndCondition::Tangent(tangents.end));
     let mut starts = vec![0.0];
-    starts.extend_from_slice(&table.piece_ends);
+    starts.extend_from_slice(table.piece_ends());
     let (piece, fraction) = closing;
     if piece >= pieces.len() || !(0.0..1.0).contains(&fraction) {
         return Err(format!(
@@ -448,21 +353,6 @@ fn fit_keyframe(
     })
 }
 
-/// Unknowns of one control point in the block least-squares problem.
-#[derive(Debug, Clone, Copy)]
-enum Slot {
-    /// Interpolated end point.
-    Fixed(Point2<f64>),
-    /// base + x * dir with the scalar x in column `col`.
-    OnTangent {
-        col: usize,
-        base: Point2<f64>,
-        dir: Vector2<f64>,
-    },
-    /// Free point with coordinates in columns `col`, `col + 1`.
-    Free { col: usize },
-}
-
 /// Least-squares fit of the source between arc lengths s0 and s1 by a clamped cubic with
 /// the common block knot vector, parameterised by arc length.
 fn fit_block(
@@ -472,115 +362,20 @@ fn fit_block(
     start: EndCondition,
     end: EndCondition,
 ) -> Result<Block, String> {
-    let knots = block_knots();
-    let n = POINTS_PER_BLOCK;
-    let p0 = table.point(s0);
-    // The end point is taken from the piece that ends there (not the next one).
-    let p1 = table.point(s1);
-    let mut slots = vec![Slot::Fixed(p0); n];
-    slots[n - 1] = Slot::Fixed(p1);
-    let mut cols = 0;
-    match start {
-        EndCondition::Tangent(dir) => {
-            slots[1] = Slot::OnTangent {
-                col: cols,
-                base: p0,
-                dir,
-            };
-            cols += 1;
-        }
-        EndCondition::Free => {
-            slots[1] = Slot::Free { col: cols };
-            cols += 2;
-        }
-    }
-    for slot in slots.iter_mut().take(n - 2).skip(2) {
-        *slot = Slot::Free { col: cols };
-        cols += 2;
-    }
-    match end {
-        EndCondition::Tangent(dir) => {
-            slots[n - 2] = Slot::OnTangent {
-                col: cols,
-                base: p1,
-                dir: -dir,
-            };
-            cols += 1;
-        }
-        EndCondition::Free => {
-            slots[n - 2] = Slot::Free { col: cols };
-            cols += 2;
-        }
-    }
-    let samples = FIT_SAMPLES_PER_SPAN * MORPH_SPANS_PER_BLOCK;
-    let mut a = DMatrix::<f64>::zeros(2 * samples, cols);
-    let mut rhs = DVector::<f64>::zeros(2 * samples);
-    for i in 0..samples {
-        let u = (i as f64 + 0.5) / samples as f64;
-        let target = table.point(s0 + u * (s1 - s0));
-        let (rx, ry) = (2 * i, 2 * i + 1);
-        rhs[rx] = target.x;
-        rhs[ry] = target.y;
-        let (span, values) = basis_functions(MORPH_DEGREE, &knots, u);
-        for (k, v) in values.iter().enumerate() {
-            match slots[span - MORPH_DEGREE + k] {
-                Slot::Fixed(p) => {
-                    rhs[rx] -= v * p.x;
-                    rhs[ry] -= v * p.y;
-                }
-                Slot::OnTangent { col, base, dir } => {
-                    rhs[rx] -= v * base.x;
-                    rhs[ry] -= v * base.y;
-                    a[(rx, col)] += v * dir.x;
-                    a[(ry, col)] += v * dir.y;
-                }
-                Slot::Free { col } => {
-                    a[(rx, col)] += v;
-                    a[(ry, col + 1)] += v;
-                }
-            }
-        }
-    }
-    let x = a
-        .svd(true, true)
-        .solve(&rhs, LSQ_RCOND)
-        .map_err(|e| format!("least-squares solve failed: {e}"))?;
-    let mut points = Vec::with_capacity(n);
-    for slot in &slots {
-        points.push(match *slot {
-            Slot::Fixed(p) => p,
-            Slot::OnTangent { col, base, dir } => {
-                if x[col] <= 0.0 {
-                    return Err(format!(
-                        "tangent handle reversed (length {}) on arc length [{s0}, {s1}]",
-                        x[col]
-                    ));
-                }
-                base + dir * x[col]
-            }
-            Slot::Free { col } => Point2::new(x[col], x[col + 1]),
-        });
-    }
-    let error_samples = ERROR_SAMPLES_PER_SPAN * MORPH_SPANS_PER_BLOCK;
-    let mut error: f64 = 0.0;
-    for i in 0..=error_samples {
-        let u = i as f64 / error_samples as f64;
-        let (span, values) = basis_functions(MORPH_DEGREE, &knots, u);
-        let fitted = values
-            .iter()
-            .enumerate()
-            .fold(Vector2::zeros(), |acc, (k, v)| {
-                acc + points[span - MORPH_DEGREE + k].coords * *v
-            });
-        let target = table.point(s0 + u * (s1 - s0));
-        error = error.max((fitted - target.coords).norm());
-    }
+    let fit = midpoint_params(FIT_SAMPLES_PER_SPAN * MORPH_SPANS_PER_BLOCK);
+    let error = grid_params(ERROR_SAMPLES_PER_SPAN * MORPH_SPANS_PER_BLOCK);
+    let samples = Samples {
+        fit: &fit,
+        error: &error,
+    };
+    let fitted = fit_cubic(table, s0, s1, (start, end), &block_knots(), &samples)?;
+    let error = fitted.max_deviation();
     Ok(Block {
         s0,
         s1,
         start,
         end,
-        points,
+        points: fitted.points,
         error,
     })
 }

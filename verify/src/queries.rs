@@ -1,6 +1,7 @@
 //! `verify queries`: a campaign of certified distance queries checked against the oracle.
 //!
-//! Cases pair built-in models, frames of the deforming model M_t (every 0.05) and seeded
+//! Cases pair built-in models (the exact ones and the freeform variants `pawn_ff`, ...),
+//! frames of the deforming model M_t (every 0.05) and seeded
 //! random freeform profiles ([`crate::random_profiles`]) under poses of every kind: far
 //! (translation ~1e3 and ~1e6), separated, near-touching (gaps 1e-2..1e-7), touching (gap 0),
 //! overlapping, nested (a small solid inside a large one, deep or near the wall), coincident
@@ -1062,7 +1063,8 @@ impl Summary {
         )
     }
 
-    /// Failing cases per shape class (built-in, M_t frame, random closed, random open):
+    /// Failing cases per shape class (built-in, built-in freeform variant, M_t frame, random
+    /// closed, random open):
     /// a case counts for every class among its two shapes.
     fn classes(&self) -> String {
         let mut counts: std::collections::BTreeMap<&str, (usize, usize)> = Default::default();
@@ -1073,6 +1075,8 @@ impl Summary {
                 let c = if !sh.random {
                     if sh.name.starts_with("morph@") {
                         "M_t frames"
+                    } else if revdist::models::FREEFORM_NAMES.contains(&sh.name.as_str()) {
+                        "built-in freeform"
                     } else {
                         "built-in"
                     }

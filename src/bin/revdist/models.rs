@@ -14,7 +14,7 @@ pub fn run(_args: Args) -> CmdResult {
     let mut out = std::io::stdout().lock();
     writeln!(
         out,
-        "{:<10} {:<13} {:>6} {:>7}",
+        "{:<12} {:<13} {:>6} {:>7}",
         "name", "kind", "pieces", "height"
     )?;
     for name in model_names() {
@@ -26,7 +26,7 @@ pub fn run(_args: Args) -> CmdResult {
         };
         writeln!(
             out,
-            "{:<10} {:<13} {:>6} {:>7.3}",
+            "{:<12} {:<13} {:>6} {:>7.3}",
             name,
             kind,
             profile.pieces().len(),
