@@ -35,7 +35,7 @@ step() {  # step NAME COMMAND...: run, time, record
 }
 
 if [ ${#paper[@]} -eq 0 ]; then
-    fcl_poses=(--poses 100 --poses-1e-5 50); query_poses=(--poses 100); cross=(--poses 30)
+    fcl_poses=(--poses 100 --poses-1e-5 50); query_poses=(--poses 100); cross=(--poses 100)
 else
     fcl_poses=(--full); query_poses=(--poses 1000); cross=(--poses 1000)
 fi

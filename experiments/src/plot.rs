@@ -204,7 +204,10 @@ pub fn grouped_bars_coloured(
         }
     };
     if log {
-        draw(lo / 2.0, hi * 3.0, true)?;
+        // Whole decades, so that the log axis labels at least two powers of ten.
+        let floor = 10f64.powf((lo / 1.5).log10().floor());
+        let ceil = 10f64.powf((hi * 2.0).log10().ceil());
+        draw(floor, ceil, true)?;
     } else {
         draw(0.0, hi * 1.15, false)?;
     }
