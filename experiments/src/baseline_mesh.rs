@@ -18,6 +18,32 @@ pub const EDGE_CAP_REL: f64 = 1.0 / 64.0;
 /// Names of the two mesh layouts, in the order [`Layout::both`] builds them.
 pub const LAYOUT_NAMES: [&str; 2] = ["balanced", "capped"];
 
+/// The certified mesh FCL gets (balanced vertices, meridian edges capped at `cap` when
+/// given) and the time it took.
+pub fn certified_mesh(
+    p: &Profile,
+    eps: f64,
+    cap: Option<f64>,
+) -> Result<(CertifiedMesh, Duration), Box<dyn std::error::Error>> {
+    let t = Instant::now();
+    let cm = tessellate(
+        p,
+        eps,
+        TessellateOptions {
+            placement: VertexPlacement::Balanced,
+            max_meridian_edge: cap,
+            ..TessellateOptions::default()
+        },
+    )?;
+    Ok((cm, t.elapsed()))
+}
+
+/// FCL's OBBRSS hierarchy on a certified mesh.
+pub fn obbrss_of(cm: &CertifiedMesh) -> Result<FclMesh, Box<dyn std::error::Error>> {
+    let tm = TriMesh::from_points(&cm.mesh.vertices, &cm.mesh.triangles);
+    Ok(FclMesh::new(&tm, Bv::Obbrss)?)
+}
+
 /// One mesh layout of one shape, with both FCL hierarchies and their build times.
 pub struct Layout {
     pub cm: CertifiedMesh,
@@ -36,17 +62,7 @@ impl Layout {
         eps: f64,
         cap: Option<f64>,
     ) -> Result<Layout, Box<dyn std::error::Error>> {
-        let t = Instant::now();
-        let cm = tessellate(
-            p,
-            eps,
-            TessellateOptions {
-                placement: VertexPlacement::Balanced,
-                max_meridian_edge: cap,
-                ..TessellateOptions::default()
-            },
-        )?;
-        let mesh_time = t.elapsed();
+        let (cm, mesh_time) = certified_mesh(p, eps, cap)?;
         let tm = TriMesh::from_points(&cm.mesh.vertices, &cm.mesh.triangles);
         let obbrss = FclMesh::new(&tm, Bv::Obbrss)?;
         let rss = FclMesh::new(&tm, Bv::Rss)?;

@@ -22,7 +22,7 @@
 //! Writes `deforming.csv`, `deforming.md` and `deforming.svg` (default `figures`).
 
 use experiments::args;
-use experiments::baseline_mesh::{agrees_with_fcl, Layout};
+use experiments::baseline_mesh::{agrees_with_fcl, certified_mesh, obbrss_of, Layout};
 use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
 use experiments::poses::{log_uniform, slide_to_gap, PLACEMENT_EPS};
 use experiments::progress;
@@ -38,7 +38,6 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
-use verify::baselines::TriMesh;
 
 /// Frames per eps >= 5e-5 (default run).
 const DEFAULT_FRAMES: usize = 40;
@@ -235,19 +234,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             let solid = Solid::from_profile(Arc::clone(&frame), eps)?;
             let rev_build = us(t.elapsed());
             // FCL: certified mesh and OBBRSS from scratch.
-            let t = Instant::now();
-            let cm = revdist::tessellate::tessellate(
-                &frame,
-                eps,
-                revdist::tessellate::TessellateOptions {
-                    placement: revdist::tessellate::VertexPlacement::Balanced,
-                    ..Default::default()
-                },
-            )?;
-            let mesh_us = us(t.elapsed());
-            let tm = TriMesh::from_points(&cm.mesh.vertices, &cm.mesh.triangles);
-            let fcl =
-                verify::baselines::fcl::FclMesh::new(&tm, verify::baselines::fcl::Bv::Obbrss)?;
+            let (cm, mesh_time) = certified_mesh(&frame, eps, None)?;
+            let mesh_us = us(mesh_time);
+            let fcl = obbrss_of(&cm)?;
             let bvh_us = us(fcl.build_time());
             let size_b = diagonal(&frame);
             for (m, row) in eps_rows.iter_mut().enumerate() {

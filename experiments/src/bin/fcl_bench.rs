@@ -22,7 +22,7 @@
 //! [--out DIR]`. Writes `DIR/fcl_bench.csv` and `DIR/fcl_bench.md` (default `figures`).
 
 use experiments::args as cli;
-use experiments::baseline_mesh::agrees_with_fcl;
+use experiments::baseline_mesh::{agrees_with_fcl, Layout};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::stats::human_bytes;
 use nalgebra::Isometry3;
@@ -30,13 +30,10 @@ use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions, QueryTree, Tolerance};
 use revdist::solid::Solid;
-use revdist::tessellate::{tessellate, CertifiedMesh, TessellateOptions, VertexPlacement};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use verify::baselines::fcl::{Bv, FclMesh};
-use verify::baselines::TriMesh;
 
 /// The issue-11 table.
 const DEFAULT_PAIRS: &str = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill";
@@ -126,37 +123,6 @@ fn parse_args() -> Result<Args, String> {
     }
     a.pairs = cli::pairs(&pairs, "--pairs")?;
     Ok(a)
-}
-
-/// One mesh layout of one shape, with both BVHs.
-struct Layout {
-    cm: CertifiedMesh,
-    mesh_time: Duration,
-    obbrss: FclMesh,
-    rss: FclMesh,
-}
-
-fn layout(p: &Profile, eps: f64, cap: Option<f64>) -> Result<Layout, Box<dyn std::error::Error>> {
-    let t = Instant::now();
-    let cm = tessellate(
-        p,
-        eps,
-        TessellateOptions {
-            placement: VertexPlacement::Balanced,
-            max_meridian_edge: cap,
-            ..TessellateOptions::default()
-        },
-    )?;
-    let mesh_time = t.elapsed();
-    let tm = TriMesh::from_points(&cm.mesh.vertices, &cm.mesh.triangles);
-    let obbrss = FclMesh::new(&tm, Bv::Obbrss)?;
-    let rss = FclMesh::new(&tm, Bv::Rss)?;
-    Ok(Layout {
-        cm,
-        mesh_time,
-        obbrss,
-        rss,
-    })
 }
 
 fn median(v: &[f64]) -> f64 {
@@ -291,11 +257,11 @@ fn bench_row(
     // FCL: both layouts of both shapes.
     let mut layouts = Vec::new();
     for cap_rel in [None, Some(EDGE_CAP_REL)] {
-        let la = layout(pa, eps, cap_rel.map(|c| c * diagonal(pa)))?;
+        let la = Layout::build(pa, eps, cap_rel.map(|c| c * diagonal(pa)))?;
         let lb = if same {
             None
         } else {
-            Some(layout(pb, eps, cap_rel.map(|c| c * diagonal(pb)))?)
+            Some(Layout::build(pb, eps, cap_rel.map(|c| c * diagonal(pb)))?)
         };
         layouts.push((la, lb));
     }

@@ -20,7 +20,9 @@
 //! [--out DIR]`. Writes `motion.csv`, `motion.md` and `motion_eps{E}.svg` (default `figures`).
 
 use experiments::args;
-use experiments::baseline_mesh::{agrees_with_fcl, EDGE_CAP_REL, LAYOUT_NAMES};
+use experiments::baseline_mesh::{
+    agrees_with_fcl, certified_mesh, obbrss_of, EDGE_CAP_REL, LAYOUT_NAMES,
+};
 use experiments::plot::{colour, grouped_bars_coloured, BarSeries};
 use experiments::poses::{pair_seed, SmoothMotion};
 use experiments::progress;
@@ -31,14 +33,13 @@ use nalgebra::Isometry3;
 use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};
 use revdist::solid::Solid;
-use revdist::tessellate::{tessellate, CertifiedMesh, TessellateOptions, VertexPlacement};
+use revdist::tessellate::CertifiedMesh;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
-use verify::baselines::fcl::{Bv, FclMesh};
-use verify::baselines::TriMesh;
+use verify::baselines::fcl::FclMesh;
 
 /// Frames per pair at eps >= 5e-5 (default run).
 const DEFAULT_FRAMES: usize = 200;
@@ -116,17 +117,8 @@ impl FclShape {
         for cap in [None, Some(EDGE_CAP_REL * diagonal(p))] {
             // The capped layout needs a cap above 2 eps (the tessellator's requirement).
             let cap = cap.filter(|&c| c > 2.0 * eps);
-            let cm = tessellate(
-                p,
-                eps,
-                TessellateOptions {
-                    placement: VertexPlacement::Balanced,
-                    max_meridian_edge: cap,
-                    ..TessellateOptions::default()
-                },
-            )?;
-            let tm = TriMesh::from_points(&cm.mesh.vertices, &cm.mesh.triangles);
-            let bvh = FclMesh::new(&tm, Bv::Obbrss)?;
+            let (cm, _) = certified_mesh(p, eps, cap)?;
+            let bvh = obbrss_of(&cm)?;
             layouts.push((cm, bvh));
         }
         Ok(FclShape { layouts })
