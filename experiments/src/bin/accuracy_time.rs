@@ -237,7 +237,14 @@ fn write_query_outputs(
     Ok(())
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut out = PathBuf::from("figures");
     let mut poses = 200usize;
     let mut args = std::env::args().skip(1);

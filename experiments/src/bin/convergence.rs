@@ -107,7 +107,14 @@ fn slope(rows: &[&Row]) -> Option<f64> {
     experiments::stats::log_log_slope(&pts)
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut out_dir = PathBuf::from("figures");
     let mut setting = (MAX_LEVEL, SAMPLES);
     for a in std::env::args().skip(1) {

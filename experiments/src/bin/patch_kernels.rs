@@ -95,7 +95,14 @@ struct Row {
     worst_excess: f64,
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut out = PathBuf::from("figures");
     let mut n = 2000;
     let mut args = std::env::args().skip(1);

@@ -30,7 +30,14 @@ fn profile(name: &str) -> Result<revdist::profile::Profile, Box<dyn std::error::
     Ok(models::model(name)?)
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut poses = 300usize;
     let mut eps_list = vec![];
