@@ -136,13 +136,6 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         .map(|s| s.to_string())
         .collect();
     names.push("morph@0.5".into());
-    // Freeform cubic B-spline variants of the paper's models, when the build has them.
-    for m in experiments::shapes::PAPER_MODELS {
-        let ff = format!("{m}_ff");
-        if models::model(&ff).is_ok() && !names.contains(&ff) {
-            names.push(ff);
-        }
-    }
     // Models are independent: study them on all cores (results are deterministic).
     use rayon::prelude::*;
     let bar = experiments::progress::bar(names.len() as u64, "convergence");

@@ -30,7 +30,7 @@ use experiments::provenance::Provenance;
 use experiments::shapes::{centre, diagonal, PAPER_EPS, PAPER_MODELS};
 use experiments::stats::{mean, us};
 use experiments::SplitMix;
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};
 use revdist::solid::Solid;
@@ -172,6 +172,23 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         (PAPER_MODELS.len() * max_frames + total) as u64,
         "deforming",
     );
+    // Per static model: its placement tree, a fixed approach direction and rotation, and a
+    // fixed factor in [0.95, 1.05) on the gap schedule, so the five models' gaps differ.
+    let fixed: Vec<(Solid, Vector3<f64>, UnitQuaternion<f64>, f64)> = statics
+        .iter()
+        .enumerate()
+        .map(|(m, x)| {
+            let mut rng = SplitMix(SEED ^ (m as u64 * 0x9e37));
+            let (dir, rot) = (rng.unit_vector(), rng.rotation());
+            let factor = 1.0 + 0.1 * (log_uniform(&mut rng, 1.0, 2.0) - 1.5);
+            Ok((
+                Solid::from_profile(Arc::clone(x), PLACEMENT_EPS)?,
+                dir,
+                rot,
+                factor,
+            ))
+        })
+        .collect::<Result<_, Box<dyn std::error::Error>>>()?;
     let mut placement: Vec<Vec<Vec<Isometry3<f64>>>> = Vec::new(); // [eps][model][frame]
     let mut gaps: Vec<Vec<Vec<f64>>> = Vec::new();
     for &eps in &args.eps {
@@ -182,13 +199,10 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             let frame = Arc::new(revdist::models::morph(k as f64 / n as f64)?);
             let fine_b = Solid::from_profile(Arc::clone(&frame), PLACEMENT_EPS)?;
             for (m, x) in statics.iter().enumerate() {
-                let mut rng = SplitMix(SEED ^ (m as u64 * 0x9e37));
-                let (dir, rot) = (rng.unit_vector(), rng.rotation());
-                let fine_x = Solid::from_profile(Arc::clone(x), PLACEMENT_EPS)?;
+                let (fine_x, dir, rot, factor) = &fixed[m];
                 let ((zx, rx), (zb, rb)) = (centre(x), centre(&frame));
-                // The scheduled gap, jittered slightly so frames differ in more than t.
-                let g = gap_at(k, n) * (1.0 + 0.1 * (log_uniform(&mut rng, 1.0, 2.0) - 1.5));
-                let pose = slide_to_gap(&fine_x, &fine_b, (zx, zb), rx + rb, &dir, &rot, g)
+                let g = gap_at(k, n) * factor;
+                let pose = slide_to_gap(fine_x, &fine_b, (zx, zb), rx + rb, dir, rot, g)
                     .ok_or_else(|| {
                         format!(
                             "could not place M_t frame {k} at gap {g:.1e} from {}",
