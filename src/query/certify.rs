@@ -13,13 +13,16 @@
 //! among the pairs still queued is a lower bound of the patch distance at every step; the
 //! search pops that smallest key and splits the larger of its two pieces in halves.
 //!
+//! A sub-piece pair on a sphere (or close to one) also has the spherical-shell bound of
+//! [`shell_bound`], exact for a ball touching a surface along a circle.
+//!
 //! **Stopping.** It stops when the smallest key is within `precision` of a known upper bound
 //! (the kernel's sampled value), or when the popped pair is finer than `precision` (its
 //! disks' radii sum to at most `precision / 2`, so its key is within `precision` of the
 //! distance between its pieces), or after `max_pairs` bounds. In every case the returned
 //! value is the smallest queued key: valid however early the search stops, only less tight.
 
-use super::bounds::torus_bound;
+use super::bounds::{shell_bound, slab_bound, torus_bound};
 use super::patch::ProfileArc;
 use super::tree::Disk;
 use nalgebra::Isometry3;
@@ -83,10 +86,11 @@ pub fn patch_lower_bound(
     max_pairs: usize,
 ) -> f64 {
     let cell = |ra: (f64, f64), rb: (f64, f64), parent: f64| {
-        let da = Disk::around(&a.sub_piece(ra.0, ra.1));
-        let db = Disk::around(&b.sub_piece(rb.0, rb.1));
+        let (sa, sb) = (a.sub_piece(ra.0, ra.1), b.sub_piece(rb.0, rb.1));
+        let (da, db) = (Disk::around(&sa), Disk::around(&sb));
+        let shell = shell_bound(&sa, &sb, pos_ab).max(slab_bound(&sa, &sb, pos_ab));
         Cell {
-            key: parent.max(torus_bound(&da, &db, pos_ab)),
+            key: parent.max(shell).max(torus_bound(&da, &db, pos_ab)),
             a: ra,
             b: rb,
             radii: da.radius + db.radius,

@@ -22,7 +22,7 @@
 //! in general position) and a few planar closest-point evaluations.
 
 use super::binormal_kernel::{as_circle3, parallel_circle};
-use super::bounds::{sphere_bound, torus_bound, BOUND_SLACK};
+use super::bounds::{shell_bound, slab_bound, sphere_bound, torus_bound, BOUND_SLACK};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{Patch, ProfileArc};
 use super::sweep::ParamCircle;
@@ -100,7 +100,8 @@ pub struct PatchLower {
 }
 
 /// The cheap lower bound of a patch pair alone: the bounding spheres of the disks around
-/// the pieces (closed form), and, while that does not reach `prune_at`, the arcs' torus
+/// the pieces and the spherical-shell bound of arcs centred near the axis (closed form),
+/// and, while that does not reach `prune_at`, the arcs' torus
 /// bound (or the disks' solid-torus bound and the torus/cone bound when a piece is
 /// straight).
 pub fn patch_lower(
@@ -112,7 +113,9 @@ pub fn patch_lower(
 ) -> PatchLower {
     let pruned = |lower| PatchLower { lower, near: None };
     let (da, db) = (Disk::around(&a.arc), Disk::around(&b.arc));
-    let spheres = sphere_bound(&da, &db, pos_ab);
+    let spheres = sphere_bound(&da, &db, pos_ab)
+        .max(shell_bound(&a.arc, &b.arc, pos_ab))
+        .max(slab_bound(&a.arc, &b.arc, pos_ab));
     if spheres >= prune_at {
         return pruned(spheres);
     }
