@@ -213,15 +213,33 @@ pub fn distance_cached(
 /// The query proper, for solids that passed [`check_query`].
 fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
     let pos_ab = a.relative_pose(b);
+    let slack = query_slack(&a.tree, &b.tree, &pos_ab);
     let topts = TraversalOptions {
         tolerance: opts.tolerance.width(a.tree.target_eps, b.tree.target_eps),
         budget: opts.budget,
         bound: opts.bound,
     };
-    let s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
+    let mut s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
+    if !s.surfaces_meet
+        && s.lower - slack <= 0.0
+        && topts.tolerance > slack
+        && !s.stats.budget_exhausted
+    {
+        // The interval reached 0 only because the tolerance let the traversal stop early:
+        // certifying "no overlap" below would search both solids for a point inside the
+        // other (milliseconds). Narrowing to tolerance 0 first usually lifts the lower
+        // bound above 0 for a fraction of that (issue 11: at eps 1e-2 the default
+        // tolerance was 3-6x slower than tolerance 0).
+        let exact = TraversalOptions {
+            tolerance: 0.0,
+            ..topts
+        };
+        let first = s.stats;
+        s = traverse(&a.tree, &b.tree, &pos_ab, &exact, s.best_pair);
+        s.stats.add(&first);
+    }
     cache.last_pair = s.best_pair.or(cache.last_pair);
     let eps_sum = a.tree.eps + b.tree.eps;
-    let slack = query_slack(&a.tree, &b.tree, &pos_ab);
     let world = |p: &Point3<f64>| a.pose * p;
     let surface_lower = (s.lower - slack).max(0.0);
     let surface_upper = s.upper + slack;

@@ -120,6 +120,14 @@ pub fn patch_lower(
         return pruned(spheres);
     }
     let (lower, near_a, near_b) = match arc_tori(a, b, pos_ab, memo) {
+        // An arc of large radius lies on a fat torus; its disk's solid torus is thinner
+        // when the piece is short (leaves are cut to [`super::tree::MAX_LEAF_RADIUS_REL`]).
+        Some(t)
+            if t.lower.max(spheres) < prune_at && t.lower.max(spheres) <= da.radius + db.radius =>
+        {
+            let disks = torus_bound(&da, &db, pos_ab);
+            (spheres.max(t.lower).max(disks), t.near_a, t.near_b)
+        }
         Some(t) => (spheres.max(t.lower), t.near_a, t.near_b),
         None => {
             let disks = spheres.max(torus_bound(&da, &db, pos_ab));

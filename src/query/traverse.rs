@@ -56,6 +56,23 @@ pub struct TraversalStats {
     pub budget_exhausted: bool,
 }
 
+impl TraversalStats {
+    /// Adds another traversal's counters (a query that traversed twice reports both).
+    pub fn add(&mut self, o: &TraversalStats) {
+        self.node_pairs += o.node_pairs;
+        self.leaf_bounds += o.leaf_bounds;
+        self.leaf_tests += o.leaf_tests;
+        self.patch_bounds += o.patch_bounds;
+        self.patch_tests += o.patch_tests;
+        self.leaf_bounds_ns += o.leaf_bounds_ns;
+        self.leaf_tests_ns += o.leaf_tests_ns;
+        self.bound_tests += o.bound_tests;
+        self.max_queue = self.max_queue.max(o.max_queue);
+        self.subdivided_pairs += o.subdivided_pairs;
+        self.budget_exhausted |= o.budget_exhausted;
+    }
+}
+
 /// Result of a traversal over the two boundary surfaces.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceBounds {
