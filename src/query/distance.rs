@@ -214,15 +214,18 @@ pub fn distance_cached(
 fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
     let pos_ab = a.relative_pose(b);
     let slack = query_slack(&a.tree, &b.tree, &pos_ab);
+    // The answer is widened by the rounding slack on both sides: the traversal stops that
+    // much narrower, so that `upper - lower` keeps within the requested width.
     let topts = TraversalOptions {
-        tolerance: opts.tolerance.width(a.tree.target_eps, b.tree.target_eps),
+        tolerance: (opts.tolerance.width(a.tree.target_eps, b.tree.target_eps) - 2.0 * slack)
+            .max(0.0),
         budget: opts.budget,
         bound: opts.bound,
     };
     let mut s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
     if !s.surfaces_meet
         && s.lower - slack <= 0.0
-        && topts.tolerance > slack
+        && topts.tolerance > 0.0
         && !s.stats.budget_exhausted
     {
         // The interval reached 0 only because the tolerance let the traversal stop early:

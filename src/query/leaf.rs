@@ -33,6 +33,9 @@ pub const SETTLE_REL: f64 = 1e-10;
 /// to the exact solve as "may intersect" (100-300 us).
 pub const STAGE1_SPLIT_PAIRS: usize = 24;
 
+/// Sub-piece torus bounds per patch pair of [`LeafPair::tightened_lower`].
+pub const TIGHTEN_PAIRS: usize = 32;
+
 /// What a leaf pair evaluation found.
 pub struct LeafResult {
     /// A rigorous lower bound of the leaves' patch distance.
@@ -173,6 +176,40 @@ impl<'q> LeafPair<'q> {
             }
         }
         Some(r)
+    }
+
+    /// Stage 1b, for a leaf pair popped again with its stage-1 key: a sharper lower bound
+    /// of its patch distance from sub-piece torus bounds ([`patch_lower_bound`], at most
+    /// [`TIGHTEN_PAIRS`] per patch pair), searched up to `prune_at`. A leaf pair whose
+    /// stage-1 bound was loose (a long or flat piece, the solid torus of a wide arc) is then
+    /// usually pruned without the exact solve; one that really holds the minimum is not,
+    /// and goes on to [`LeafPair::exact`].
+    pub fn tightened_lower(&mut self, na: u32, nb: u32, prune_at: f64) -> f64 {
+        let precision = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
+        let mut lower = f64::INFINITY;
+        for (ia, ib) in self.patch_ranges(na, nb) {
+            let (pa, pb) = self.patches(ia, ib);
+            let cheap = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores).lower;
+            let pair = if cheap >= prune_at {
+                cheap
+            } else {
+                let split = patch_lower_bound(
+                    &pa.arc,
+                    &pb.arc,
+                    self.pos_ab,
+                    prune_at,
+                    precision,
+                    TIGHTEN_PAIRS,
+                );
+                cheap.max(split)
+            };
+            lower = lower.min(pair);
+            if lower < prune_at {
+                // One patch pair below the level keeps the leaf pair: stop early.
+                return lower;
+            }
+        }
+        lower
     }
 
     fn settled(&self, b: &PatchBounds) -> bool {

@@ -35,6 +35,9 @@ pub struct TraversalStats {
     pub node_pairs: usize,
     /// Leaf pairs settled or bounded by stage-1 bounds alone ([`super::leaf`]).
     pub leaf_bounds: usize,
+    /// Leaf pairs whose stage-1 bound was sharpened by sub-piece bounds before any exact
+    /// solve ([`super::leaf::LeafPair::tightened_lower`]).
+    pub leaf_tightened: usize,
     /// Leaf pairs that went to the exact stage (some of their patch pairs solved exactly).
     pub leaf_tests: usize,
     /// Patch pairs given cheap bounds (one circle/circle minimum each).
@@ -150,6 +153,9 @@ enum State {
     Open,
     /// Leaf pair with stage-1 bounds ([`super::leaf`]); an exact solve may narrow it.
     Bounded,
+    /// Bounded leaf pair whose lower bound was sharpened by sub-piece bounds
+    /// ([`super::leaf::LeafPair::tightened_lower`]); popped again, it is solved exactly.
+    Tightened,
     /// Leaf pair whose interval nothing can narrow further.
     Resolved,
 }
@@ -205,6 +211,13 @@ pub fn traverse(
             State::Open => leaves.bounds(a, b, prune_at),
             _ => None,
         };
+        if from == State::Bounded {
+            let clock = Instant::now();
+            let lower = leaves.tightened_lower(a, b, prune_at);
+            stats.leaf_bounds_ns += clock.elapsed().as_nanos() as u64;
+            stats.leaf_tightened += 1;
+            return (key.max(lower - e), State::Tightened);
+        }
         stats.leaf_bounds_ns += clock.elapsed().as_nanos() as u64;
         let r = match staged {
             Some(r) => {
