@@ -10,7 +10,9 @@
 //! | step | where | measured cost (per pair, 2-core EPYC) | what it gives |
 //! | --- | --- | --- | --- |
 //! | node-pair bound | [`bounds`] | 0.1 us (spheres), ~1-3 us with the solid-torus circle minimum | a valid lower bound; prunes most pairs |
-//! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (one circle/circle minimum, or a circle/cone solve) | lower bound and a realised upper bound; settles the pair when they meet |
+//! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (one circle/circle minimum, or a circle/cone solve; closed-form shell and slab bounds first) | lower bound and a realised upper bound; settles the pair when they meet |
+//! | stage 1, split | [`leaf`], [`certify`] | up to 24 sub-piece torus bounds (~1-3 us each) | a positive lower bound for a pair whose tori overlap (long, flat or wide pieces), instead of "may intersect" |
+//! | stage 1b, tightened | [`leaf`], [`certify`] | up to 32 sub-piece torus bounds per patch pair | a leaf pair popped again is first given a sharper bound against the current pruning level; most are then pruned |
 //! | leaf stage 2 | [`leaf`], [`mod@patch_distance`] | ~30-300 us per patch pair (degree-8 boundary solves, crossing scan) | the exact patch distance and interpenetration checks |
 //! | boundary pre-bounds | [`mod@patch_distance`] | ~1 us per boundary parallel | skip a degree-8 solve whose parallel cannot beat the best candidate |
 //! | closed forms | [`mod@patch_distance`], [`planar`] | < 1 us | coaxial patches, parallels outside a torus whose closest point is on the patch |
@@ -18,11 +20,19 @@
 //! Costs from `cargo bench --bench query -- patch_distance_64` (64 leaf-sized patch pairs
 //! 1e-4 from contact: `stage1_bounds`, `node_pair_bound`, `binormals_gauss`) and
 //! `cargo bench --bench circle`; counts per query from the `query_cost` experiment
-//! (`TraversalStats`: `bound_tests`, `leaf_bounds`, `leaf_tests`, `patch_bounds`,
-//! `patch_tests`). A leaf pair is measured exactly only when it is popped a second time, i.e.
-//! while its stage-1 lower bound still holds the query's lower bound; on the exact torus
-//! that never happens, on freeform models near contact 2-9 leaf pairs per query still need
-//! it (flat or concave arcs and straight pieces, whose tori or cones give weak bounds).
+//! (`TraversalStats`: `bound_tests`, `leaf_bounds`, `leaf_tightened`, `leaf_tests`,
+//! `patch_bounds`, `patch_tests`). A leaf pair is measured exactly only when its sharpened
+//! lower bound still holds the query's lower bound; on the exact torus that never happens.
+//!
+//! Where the time goes now (close poses, eps 1e-4, `query_cost --repeat 25` under `perf`):
+//! on the freeform paper models about 1-2 leaf pairs per query still need the exact solve
+//! (half of the time: boundary-parallel binormals and crossing scans), and a third of the
+//! time is circle/circle minima behind node, stage-1 and sub-piece bounds (~1-3 us each,
+//! a few hundred per query). Before the stage-1 split and stage 1b, 3-9 leaf pairs per query
+//! went to the exact solve, 80% of them as "may intersect" only because a straight piece's
+//! or a wide arc's solid torus overlapped the other piece. A cheaper closed-form
+//! circle/circle lower bound in front of the solver was tried and was slower (it rarely
+//! prunes near contact, where the solver is needed anyway).
 //!
 //! # Layout
 //!
