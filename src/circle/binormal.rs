@@ -28,7 +28,7 @@ use crate::poly::solve::{
     RootKind,
 };
 use crate::poly::FixedVec;
-use nalgebra::Vector3;
+use nalgebra::{Point3, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Capacity for binormals of one pair: 8 isolated ones (Neff's bound) plus duplicates from
@@ -512,6 +512,9 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
             multiplicity: sol.multiplicity,
         };
     }
+    if let Some(m) = intersecting_axes_min(a, b) {
+        return m;
+    }
     // General position: a local minimum certified global by a quartic (fast path).
     let (x, y, param_b) = if b.radius <= a.radius {
         (a, b, true)
@@ -580,6 +583,123 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
         closest_pairs: 1,
         multiplicity: m.3,
     }
+}
+
+/// Largest distance between the two axes, relative to the configuration scale, at which
+/// [`intersecting_axes_min`] treats them as meeting: moving B onto the meeting point moves
+/// every distance by at most that much, 1e3 below [`TIE_REL_TOL`].
+const AXES_MEET_REL: f64 = 1e-15;
+
+/// Farthest meeting point (relative to the scale) the closed form accepts: beyond it the
+/// axes are nearly parallel and the sphere radii below lose digits to cancellation.
+const AXES_MEET_FAR: f64 = 1e3;
+
+/// Closed-form minimum for circles whose axes meet at a point `O` (issue 11): both circles
+/// lie on spheres about `O`, of radii `rho_a = |A(t) - O|`, `rho_b`, and as seen from `O`
+/// they are small circles of angular radii `alpha_a`, `alpha_b` about their axis directions
+/// `u_a`, `u_b` (oriented from `O` to each centre), `beta` apart. For points at angle
+/// `gamma` as seen from `O`, `|x - y|^2 = (rho_a - rho_b)^2 + 4 rho_a rho_b sin^2(gamma/2)`,
+/// increasing in `gamma`; the angle from `u_b` of a point of A ranges over
+/// `[|beta - alpha_a|, min(beta + alpha_a, 2 pi - beta - alpha_a)]`, so the smallest `gamma`
+/// is the gap of `alpha_b` to that range, attained (when positive) by the pair on the great
+/// circle through `u_a` and `u_b` (the configuration is symmetric about that plane and the
+/// pair is unique). No polynomial is solved.
+///
+/// When the cones from `O` meet (`gamma = 0`) the distance is `|rho_a - rho_b|`, attained
+/// by the two mirror-image directions common to both cones, off the symmetry plane.
+///
+/// `None` (the general solver decides) when the axes do not meet within [`AXES_MEET_REL`],
+/// meet too far away, or a closest point lies on the other circle's axis (a continuum).
+fn intersecting_axes_min(a: &Circle3, b: &Circle3) -> Option<MinDistance> {
+    let (na, nb) = (a.normal.into_inner(), b.normal.into_inner());
+    let cross = na.cross(&nb);
+    let sin_beta = cross.norm();
+    let scale = a.center.coords.norm() + b.center.coords.norm() + a.radius + b.radius;
+    let w = b.center - a.center;
+    if sin_beta <= PARALLEL_SIN_TOL || w.dot(&cross).abs() > AXES_MEET_REL * scale * sin_beta {
+        return None;
+    }
+    // Meeting point O = a.center + s na (closest point of A's axis to B's axis), in the
+    // cross-product form whose error is ~ulp |w| / sin(beta) (the form with
+    // `1 - cos^2(beta)` cancels for nearly parallel axes).
+    let s = w.cross(&nb).dot(&cross) / (sin_beta * sin_beta);
+    let o = a.center + na * s;
+    if (o - a.center).norm() > AXES_MEET_FAR * scale
+        || (o - b.center).norm() > AXES_MEET_FAR * scale
+    {
+        return None;
+    }
+    // Axis direction from O towards each centre (either way when O is the centre) and the
+    // offset of the centre along it.
+    let toward = |c: &Point3<f64>, n: Vector3<f64>| {
+        let d = (c - o).dot(&n);
+        if d >= 0.0 {
+            (n, d)
+        } else {
+            (-n, -d)
+        }
+    };
+    let (ua, da) = toward(&a.center, na);
+    let (ub, db) = toward(&b.center, nb);
+    let (rho_a, rho_b) = (a.radius.hypot(da), b.radius.hypot(db));
+    let (alpha_a, alpha_b) = (a.radius.atan2(da), b.radius.atan2(db));
+    let beta = ua.cross(&ub).norm().atan2(ua.dot(&ub));
+    let (lo, hi) = (
+        (beta - alpha_a).abs(),
+        (beta + alpha_a).min(TAU - beta - alpha_a),
+    );
+    let gamma: f64 = (lo - alpha_b).max(alpha_b - hi).max(0.0);
+    // In the plane of u_a and u_b: e_a is perpendicular to u_a towards u_b, e_b to u_b
+    // towards u_a.
+    let e_a = (ub - ua * ua.dot(&ub)).normalize();
+    let e_b = (ua - ub * ua.dot(&ub)).normalize();
+    let (pa, pb, pairs) = if gamma > 0.0 {
+        let on_a = |sgn: f64| o + (ua * alpha_a.cos() + e_a * (sgn * alpha_a.sin())) * rho_a;
+        let on_b = |sgn: f64| o + (ub * alpha_b.cos() + e_b * (sgn * alpha_b.sin())) * rho_b;
+        let mut best = (f64::INFINITY, a.center, b.center);
+        for pa in [on_a(1.0), on_a(-1.0)] {
+            for pb in [on_b(1.0), on_b(-1.0)] {
+                let d = (pa - pb).norm();
+                if d < best.0 {
+                    best = (d, pa, pb);
+                }
+            }
+        }
+        (best.1, best.2, 1)
+    } else {
+        // The cones meet: the directions of A's circle at angle alpha_b from u_b, at
+        // azimuth +-t about u_a from e_a, with u_a . u_b = cos(beta) and e_a . u_b =
+        // sin(beta); one closest pair on each of the two spheres' shared direction.
+        let denom = alpha_a.sin() * beta.sin();
+        if denom <= 1e-12 {
+            return None;
+        }
+        let cos_t = ((alpha_b.cos() - alpha_a.cos() * beta.cos()) / denom).clamp(-1.0, 1.0);
+        let sin_t = (1.0 - cos_t * cos_t).sqrt();
+        let f_a = ua.cross(&e_a);
+        let dir = ua * alpha_a.cos() + (e_a * cos_t + f_a * sin_t) * alpha_a.sin();
+        let pairs = if sin_t > 1e-12 { 2 } else { 1 };
+        (o + dir * rho_a, o + dir * rho_b, pairs)
+    };
+    // A closest point on the other circle's axis makes a continuum: leave it to the solver.
+    let off_axis = |p: &Point3<f64>, c: &Circle3| {
+        let r = p - c.center;
+        (r - c.normal.into_inner() * r.dot(&c.normal)).norm() > 1e-9 * scale
+    };
+    if !off_axis(&pa, b) || !off_axis(&pb, a) {
+        return None;
+    }
+    let distance = (rho_a - rho_b).hypot(2.0 * (rho_a * rho_b).sqrt() * (0.5 * gamma).sin());
+    let (angle_a, angle_b) = (a.angle_of(&pa), b.angle_of(&pb));
+    Some(MinDistance {
+        distance,
+        angle_a,
+        angle_b,
+        point_a: a.point_at(angle_a),
+        point_b: b.point_at(angle_b),
+        closest_pairs: pairs,
+        multiplicity: Multiplicity::Finite,
+    })
 }
 
 /// The minimum found with B parametrised (local units until scaled by the caller).

@@ -1044,3 +1044,44 @@ fn general_pairs_are_certified_and_agree_with_the_oracle() {
     }
     assert!(certified_count >= 290, "{certified_count}");
 }
+
+/// Circles whose axes meet (the closed form of `intersecting_axes_min`): random meeting
+/// points, axis directions, offsets along the axes (including the centre at the meeting
+/// point and nearly parallel axes) and radii, against the sampled-and-polished oracle.
+#[test]
+fn intersecting_axes_match_the_oracle() {
+    let mut rng = Rng(77);
+    let mut cases = 0;
+    for k in 0..400 {
+        let o = Point3::from(rng.unit() * rng.range(0.0, 2.0));
+        let ua = rng.unit();
+        let tilt = [1.0, 1e-3, 1e-6][k % 3];
+        let ub = (ua + rng.unit() * tilt).normalize();
+        let da = if k % 5 == 0 {
+            0.0
+        } else {
+            rng.range(-1.0, 1.0)
+        };
+        let db = rng.range(-1.0, 1.0);
+        let (ra, rb) = (rng.range(0.1, 1.1), rng.range(0.1, 1.6));
+        let a = Circle3::new(o + ua * da, ua, ra).unwrap();
+        let b = Circle3::new(o + ub * db, ub, rb).unwrap();
+        let truth = oracle_min(&a, &b);
+        for (x, y) in [(&a, &b), (&b, &a)] {
+            let m = min_distance(x, y);
+            let scale = 1.0 + o.coords.norm() + ra + rb;
+            assert!(
+                (m.distance - truth).abs() <= 1e-12 * scale,
+                "case {k}: {} vs {truth}",
+                m.distance
+            );
+            let pd = (m.point_a - m.point_b).norm();
+            assert!(
+                (pd - m.distance).abs() <= 1e-12 * scale,
+                "case {k}: witnesses {pd}"
+            );
+        }
+        cases += 1;
+    }
+    assert_eq!(cases, 400);
+}
