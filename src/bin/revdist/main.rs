@@ -11,6 +11,7 @@ mod figures;
 mod input;
 mod models;
 mod profile;
+mod scene;
 mod tessellate;
 mod tree;
 
@@ -41,6 +42,8 @@ enum Command {
     Distance(distance::Args),
     /// Closed triangle mesh (OBJ or binary STL) within a certified Hausdorff distance eps.
     Tessellate(tessellate::Args),
+    /// Run a scene file (bodies, motions, effects; see experiments/scenes/) with revdist-scene.
+    Scene(scene::Args),
 }
 
 fn main() -> ExitCode {
@@ -53,6 +56,7 @@ fn main() -> ExitCode {
         Command::Tree(args) => tree::run(args),
         Command::Distance(args) => distance::run(args),
         Command::Tessellate(args) => tessellate::run(args),
+        Command::Scene(args) => scene::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
