@@ -51,5 +51,6 @@ step pareto       $bin/pareto --out "$out" "${paper[@]}"                      # 
 step stability    $bin/stability --out "$out" "${paper[@]}"                   # degenerate families, exact references
 step crosscheck   $bin/verify crosscheck --out "$out/crosscheck" "${cross[@]}"  # vs FCL, CGAL, libccd
 step kernels      $bin/patch_kernels "$out"                                  # leaf kernels near contact
+step scenes       bash -c 'for f in experiments/scenes/*.toml; do '"$bin"'/revdist-scene "$f" --out '"$out"'/scenes > /dev/null || exit 1; done'  # example scenes: CSV + cost summaries
 echo "total $SECONDS s" | tee -a "$timing" >&2
 echo "figures and tables written to $out/ (step times in $timing)"
