@@ -370,55 +370,56 @@ fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, SceneError> {
     };
     let pose = pose_of(&format!("{f}.pose"), &b.pose)?;
     let has_track = b.keyframes.is_some() || b.random_motion.is_some();
-    let effect =
-        match b.effect.as_str() {
-            "static" | "deforming" if has_track => return Err(field_error(
+    let effect = match b.effect.as_str() {
+        "static" | "deforming" if has_track => {
+            return Err(field_error(
                 format!("{f}.effect"),
                 format!(
                     "'{}' bodies do not move: remove keyframes/random_motion or use 'kinematic'",
                     b.effect
                 ),
-            )),
-            "static" => {
-                if matches!(shape, Shape::Morph { .. }) {
-                    return Err(field_error(
-                        format!("{f}.effect"),
-                        "a morph body deforms: use effect = 'deforming'",
-                    ));
-                }
-                Effect::Static
+            ))
+        }
+        "static" => {
+            if matches!(shape, Shape::Morph { .. }) {
+                return Err(field_error(
+                    format!("{f}.effect"),
+                    "a morph body deforms: use effect = 'deforming'",
+                ));
             }
-            "deforming" => {
-                if !matches!(shape, Shape::Morph { .. }) {
-                    return Err(field_error(
-                        format!("{f}.effect"),
-                        "only a morph body can deform (give morph = { period = ... })",
-                    ));
-                }
-                Effect::Deforming
+            Effect::Static
+        }
+        "deforming" => {
+            if !matches!(shape, Shape::Morph { .. }) {
+                return Err(field_error(
+                    format!("{f}.effect"),
+                    "only a morph body can deform (give morph = { period = ... })",
+                ));
             }
-            "kinematic" => {
-                if matches!(shape, Shape::Morph { .. }) {
-                    return Err(field_error(
+            Effect::Deforming
+        }
+        "kinematic" => {
+            if matches!(shape, Shape::Morph { .. }) {
+                return Err(field_error(
                     format!("{f}.effect"),
                     "a morph body is 'deforming' (moving and deforming at once is not supported)",
                 ));
-                }
-                Effect::Kinematic(check_track(&f, b, &pose)?)
             }
-            "dynamic" => {
-                return Err(field_error(
-                    format!("{f}.effect"),
-                    "'dynamic' (rigid bodies under gravity) is not available in this build",
-                ))
-            }
-            other => {
-                return Err(field_error(
-                    format!("{f}.effect"),
-                    format!("unknown effect '{other}' (static, kinematic or deforming)"),
-                ))
-            }
-        };
+            Effect::Kinematic(check_track(&f, b, &pose)?)
+        }
+        "dynamic" => {
+            return Err(field_error(
+                format!("{f}.effect"),
+                "'dynamic' (rigid bodies under gravity) is not available in this build",
+            ))
+        }
+        other => {
+            return Err(field_error(
+                format!("{f}.effect"),
+                format!("unknown effect '{other}' (static, kinematic or deforming)"),
+            ))
+        }
+    };
     Ok(Body {
         name: b.name.clone(),
         shape,

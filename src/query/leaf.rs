@@ -150,15 +150,7 @@ impl<'q> LeafPair<'q> {
             if lower.lower <= 0.0 {
                 // The pieces' tori overlap, which near contact mostly means a long or flat
                 // piece, not a crossing: a few sub-piece bounds usually separate them.
-                let precision = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
-                let split = patch_lower_bound(
-                    &pa.arc,
-                    &pb.arc,
-                    self.pos_ab,
-                    prune_at,
-                    precision,
-                    STAGE1_SPLIT_PAIRS,
-                );
+                let split = self.split_lower((na, nb), (pa, pb), prune_at, STAGE1_SPLIT_PAIRS);
                 if split <= 0.0 {
                     return None;
                 }
@@ -185,7 +177,6 @@ impl<'q> LeafPair<'q> {
     /// usually pruned without the exact solve; one that really holds the minimum is not,
     /// and goes on to [`LeafPair::exact`].
     pub fn tightened_lower(&mut self, na: u32, nb: u32, prune_at: f64) -> f64 {
-        let precision = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
         let mut lower = f64::INFINITY;
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
@@ -195,19 +186,24 @@ impl<'q> LeafPair<'q> {
             let pair = if cheap >= prune_at || lower < prune_at {
                 cheap
             } else {
-                let split = patch_lower_bound(
-                    &pa.arc,
-                    &pb.arc,
-                    self.pos_ab,
-                    prune_at,
-                    precision,
-                    TIGHTEN_PAIRS,
-                );
-                cheap.max(split)
+                cheap.max(self.split_lower((na, nb), (pa, pb), prune_at, TIGHTEN_PAIRS))
             };
             lower = lower.min(pair);
         }
         lower
+    }
+
+    /// Sub-piece torus bounds of one patch pair ([`patch_lower_bound`]) searched up to
+    /// `prune_at`, to the precision of the leaves' eps, with at most `budget` bounds.
+    fn split_lower(
+        &self,
+        (na, nb): (u32, u32),
+        (pa, pb): (&Patch, &Patch),
+        prune_at: f64,
+        budget: usize,
+    ) -> f64 {
+        let precision = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
+        patch_lower_bound(&pa.arc, &pb.arc, self.pos_ab, prune_at, precision, budget)
     }
 
     fn settled(&self, b: &PatchBounds) -> bool {
