@@ -30,6 +30,18 @@
 //! # or random_motion = { seed = 7, amplitude = 0.2, angle = 0.5, period = 2.0 }
 //! ```
 //!
+//! Rendered frames are made only when asked for:
+//!
+//! ```toml
+//! [render]
+//! every = 5               # every 5th frame, as DIR/<scene>-frames/NNNNN.png
+//! width = 640
+//! height = 480
+//! eye = [4.0, -4.0, 3.0]
+//! target = [0.0, 0.0, 0.7]
+//! fov = 0.7               # vertical field of view, radians
+//! ```
+//!
 //! Every field is checked when the scene is loaded; an error names the field
 //! (`body[2].keyframes[1].time: ...`) and the problem.
 
@@ -151,8 +163,38 @@ struct SceneSpec {
     measure: Option<MeasureSpec>,
     #[serde(default)]
     within: Option<f64>,
+    #[serde(default)]
+    render: Option<RenderSpec>,
     #[serde(rename = "body")]
     bodies: Vec<BodySpec>,
+}
+
+/// Rendered frames: every `every`-th frame as a PNG, seen from `eye` towards `target`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RenderSpec {
+    #[serde(default)]
+    every: Option<usize>,
+    #[serde(default)]
+    width: Option<usize>,
+    #[serde(default)]
+    height: Option<usize>,
+    eye: Vec<f64>,
+    target: Vec<f64>,
+    #[serde(default)]
+    fov: Option<f64>,
+}
+
+/// Checked render settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Render {
+    pub every: usize,
+    pub width: usize,
+    pub height: usize,
+    pub eye: nalgebra::Point3<f64>,
+    pub target: nalgebra::Point3<f64>,
+    /// Vertical field of view (radians).
+    pub fov: f64,
 }
 
 /// Where a body's shape comes from.
@@ -213,6 +255,8 @@ pub struct Scene {
     pub tolerance: Option<f64>,
     pub measure: Measure,
     pub within: Option<f64>,
+    /// Rendered frames, when the scene asks for them.
+    pub render: Option<Render>,
     pub bodies: Vec<Body>,
 }
 
@@ -598,6 +642,41 @@ fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneError> {
             Measure::Pairs(out)
         }
     };
+    let render = match spec.render {
+        None => None,
+        Some(r) => {
+            let eye = vec3("render.eye", &r.eye)?;
+            let target = vec3("render.target", &r.target)?;
+            if (eye - target).norm() == 0.0 {
+                return Err(field_error("render.target", "must differ from render.eye"));
+            }
+            let size = |field: &str, v: Option<usize>, default: usize| match v.unwrap_or(default) {
+                n @ 16..=4096 => Ok(n),
+                n => Err(field_error(
+                    field,
+                    format!("must be 16..4096 pixels, got {n}"),
+                )),
+            };
+            let fov = r.fov.unwrap_or(0.7);
+            if !(fov > 0.0 && fov < 3.0) {
+                return Err(field_error(
+                    "render.fov",
+                    format!("must be in (0, 3) radians, got {fov}"),
+                ));
+            }
+            Some(Render {
+                every: match r.every.unwrap_or(1) {
+                    0 => return Err(field_error("render.every", "must be at least 1")),
+                    n => n,
+                },
+                width: size("render.width", r.width, 640)?,
+                height: size("render.height", r.height, 480)?,
+                eye: nalgebra::Point3::from(eye),
+                target: nalgebra::Point3::from(target),
+                fov,
+            })
+        }
+    };
     Ok(Scene {
         duration,
         time_step,
@@ -605,6 +684,7 @@ fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneError> {
         tolerance,
         measure,
         within,
+        render,
         bodies,
     })
 }

@@ -8,4 +8,5 @@
 pub mod format;
 pub mod motion;
 pub mod output;
+pub mod render;
 pub mod runner;

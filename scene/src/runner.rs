@@ -81,6 +81,8 @@ pub struct PairSample {
 pub struct Frame {
     pub index: usize,
     pub time: f64,
+    /// World pose of every body.
+    pub poses: Vec<Isometry3<f64>>,
     pub samples: Vec<PairSample>,
     pub cost: FrameCost,
 }
@@ -92,7 +94,8 @@ struct Live {
     changed: usize,
 }
 
-fn shape_profile(body: &Body, time: f64) -> Result<Profile, String> {
+/// The profile of a body at scene time `time` (M_t frames for a morph).
+pub fn shape_profile(body: &Body, time: f64) -> Result<Profile, String> {
     match &body.shape {
         Shape::Model(m) => revdist::models::model(m).map_err(|e| e.to_string()),
         Shape::ProfileFile(p) => revdist::profile_file::load_path(p).map_err(|e| e.to_string()),
@@ -243,6 +246,7 @@ pub fn run(
         sink(&Frame {
             index,
             time,
+            poses: live.iter().map(|l| l.solid.pose).collect(),
             samples,
             cost,
         })?;

@@ -5,6 +5,7 @@
 use clap::Parser;
 use revdist_scene::format::Scene;
 use revdist_scene::output::{csv_preamble, csv_rows, summary};
+use revdist_scene::render::SceneRenderer;
 use revdist_scene::runner::{run, FrameCost};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
@@ -58,16 +59,33 @@ fn go(args: Args) -> Result<(), Box<dyn std::error::Error>> {
     csv.write_all(csv_preamble(&shown, &scene).as_bytes())?;
     let mut costs: Vec<FrameCost> = Vec::new();
     let mut min_lower = f64::INFINITY;
+    let mut renderer = SceneRenderer::new(&scene);
+    let frames_dir = args.out.join(format!("{stem}-frames"));
+    let mut render_s = Vec::new();
     let counters = run(&scene, |frame| {
         csv_rows(&scene, frame, &mut csv)?;
         costs.push(frame.cost);
+        if let Some(r) = renderer.as_mut() {
+            let clock = std::time::Instant::now();
+            r.frame(&scene, frame, &frames_dir)?;
+            render_s.push(clock.elapsed().as_secs_f64());
+        }
         for s in &frame.samples {
             min_lower = min_lower.min(s.lower);
         }
         Ok(())
     })?;
     csv.flush()?;
-    let md = summary(&shown, &scene, &counters, &costs, min_lower);
+    let mut md = summary(&shown, &scene, &counters, &costs, min_lower);
+    if let Some(r) = &renderer {
+        let total: f64 = render_s.iter().sum();
+        md.push_str(&format!(
+            "\nRendered {} frames into `{}` ({:.1} ms per rendered frame).\n",
+            r.rendered,
+            frames_dir.display(),
+            1e3 * total / r.rendered.max(1) as f64
+        ));
+    }
     let md_path = args.out.join(format!("{stem}.md"));
     std::fs::write(&md_path, &md)
         .map_err(|e| format!("cannot write '{}': {e}", md_path.display()))?;
