@@ -195,7 +195,7 @@ impl SceneRenderer {
         frame: &crate::runner::Frame,
         dir: &Path,
     ) -> Result<(), Box<dyn std::error::Error>> {
-        if frame.index % self.every != 0 {
+        if !frame.index.is_multiple_of(self.every) {
             return Ok(());
         }
         let mut canvas = Canvas::new(self.camera.width, self.camera.height);
