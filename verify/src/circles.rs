@@ -533,6 +533,12 @@ pub fn run_case(case: &Case) -> Outcome {
 }
 
 /// Minimum distance from the companion-matrix roots of the (exact, then rounded) polynomial.
+///
+/// Every eigenvalue's real part is a candidate angle, polished by Newton steps on the rounded
+/// polynomial: near-double roots (nearly touching circles) split into complex pairs under
+/// rounding, with imaginary parts far above any fixed threshold once the coefficients span
+/// many orders of magnitude. A candidate is only ever evaluated as a realised distance, so
+/// extra candidates cannot make the reference smaller than the true minimum.
 fn companion_min(pair: &ExactPair) -> Option<f64> {
     let p: Vec<f64> = pair.binormal_poly().iter().map(|c| c.to_f64()).collect();
     let scale = p.iter().fold(0.0f64, |m, c| m.max(c.abs()));
@@ -547,8 +553,9 @@ fn companion_min(pair: &ExactPair) -> Option<f64> {
         q.z.hypot(q.x.hypot(q.y) - ra)
     };
     let mut best = dist(std::f64::consts::PI);
-    for r in companion::real_roots(&p)? {
-        best = best.min(dist(2.0 * r.atan()));
+    for (re, _) in companion::complex_roots(&p)? {
+        let x = companion::polish_root(&p, re);
+        best = best.min(dist(2.0 * x.atan())).min(dist(2.0 * re.atan()));
     }
     Some(best)
 }
@@ -563,6 +570,10 @@ pub struct Summary {
     pub count_mismatch_example: Option<String>,
     pub companion_worst: f64,
     pub companion_over_tol: usize,
+    /// Case label of the worst companion-matrix error.
+    pub companion_worst_label: Option<String>,
+    /// Companion-matrix cases above tolerance, per family.
+    pub companion_over_tol_per_family: Vec<(&'static str, usize)>,
     pub failures: Vec<String>,
     pub count_mismatch_random: usize,
     /// Mismatches whose exact roots include a pair closer than [`CLUSTER_GAP`].
@@ -649,9 +660,20 @@ impl Summary {
             }
         }
         if let Some(c) = o.companion_rel_err {
-            self.companion_worst = self.companion_worst.max(c);
+            if c > self.companion_worst {
+                self.companion_worst = c;
+                self.companion_worst_label = Some(case.label.clone());
+            }
             if c > REL_TOL {
                 self.companion_over_tol += 1;
+                match self
+                    .companion_over_tol_per_family
+                    .iter_mut()
+                    .find(|e| e.0 == case.family)
+                {
+                    Some(e) => e.1 += 1,
+                    None => self.companion_over_tol_per_family.push((case.family, 1)),
+                }
             }
         }
     }
@@ -717,8 +739,18 @@ impl std::fmt::Display for Summary {
         )?;
         write!(
             f,
-            "companion-matrix reference: worst rel err {:.3e}, {} cases above tolerance",
-            self.companion_worst, self.companion_over_tol
+            "companion-matrix reference (faer, informational): worst rel err {:.3e}{}, {} cases above tolerance{}",
+            self.companion_worst,
+            self.companion_worst_label
+                .as_ref()
+                .map(|l| format!(" in {l}"))
+                .unwrap_or_default(),
+            self.companion_over_tol,
+            self.companion_over_tol_per_family
+                .iter()
+                .map(|(fam, n)| format!(" {fam} {n}"))
+                .collect::<Vec<_>>()
+                .join(",")
         )
     }
 }
@@ -779,8 +811,17 @@ mod tests {
         // 1e-14..1e-4 of a continuum the polynomial is within noise of zero, and the count
         // of its roots is not a double-precision quantity.
         assert_eq!(s.count_mismatch_random_resolvable, 0, "{s}");
+        // The faer companion-matrix reference finds every minimum: its error is bounded by
+        // the power basis' conditioning (coefficients spanning up to 1e24 at radius ratios
+        // of 1e6; measured worst 2.6e-5 on 31,600 cases), never a missed root (errors of
+        // order 1, as before candidates included complex-split eigenvalues).
+        assert!(s.companion_worst <= COMPANION_REL_BOUND, "{s}");
     }
 }
+
+/// Bound on the companion-matrix reference's relative error in [`tests::small_slice_passes`].
+#[cfg(test)]
+const COMPANION_REL_BOUND: f64 = 1e-3;
 
 #[cfg(test)]
 mod catalogue_tests {
