@@ -11,6 +11,7 @@
 //! overlap can be neither certified nor excluded at the trees' accuracy, `lower = 0`.
 
 use super::bounds::BoundKind;
+use super::offset::{offset_distance, OffsetDistance};
 use super::overlap::{certify_overlap, nesting, Verdict};
 use super::refine::refine_on_profiles;
 use super::traverse::{traverse, Budget, TraversalOptions, TraversalStats};
@@ -214,6 +215,9 @@ pub fn distance_cached(
 fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
     let pos_ab = a.relative_pose(b);
     let slack = query_slack(&a.tree, &b.tree, &pos_ab);
+    if let (Some(oa), Some(ob)) = (&a.tree.offset, &b.tree.offset) {
+        return offset_result(a, &offset_distance(oa, ob, &pos_ab, slack));
+    }
     // The answer is widened by the rounding slack on both sides: the traversal stops that
     // much narrower, so that `upper - lower` keeps within the requested width.
     let topts = TraversalOptions {
@@ -294,6 +298,29 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
         point_b: world(&pb),
         overlap: false,
         stats: s.stats,
+    }
+}
+
+/// The closed form for two balls or solid tori ([`super::offset`]) as a query answer:
+/// overlap only with a point inside both true solids, `lower = 0` in the band around
+/// touching where neither overlap nor separation is certain.
+fn offset_result(a: &Solid, r: &OffsetDistance) -> Distance {
+    let stats = TraversalStats {
+        closed_forms: 1,
+        ..TraversalStats::default()
+    };
+    if let Some(x) = r.inside_both {
+        let x = a.pose * x;
+        return overlap_result(x, x, stats);
+    }
+    Distance {
+        value: r.value.clamp(r.lower, r.upper),
+        lower: r.lower,
+        upper: r.upper,
+        point_a: a.pose * r.point_a,
+        point_b: a.pose * r.point_b,
+        overlap: false,
+        stats,
     }
 }
 

@@ -57,6 +57,7 @@ pub mod distance;
 pub mod gauss;
 pub mod leaf;
 pub mod line_field;
+pub mod offset;
 pub mod overlap;
 pub mod patch;
 pub mod patch_bound;

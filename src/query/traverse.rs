@@ -52,6 +52,9 @@ pub struct TraversalStats {
     pub bound_tests: usize,
     /// Largest queue length.
     pub max_queue: usize,
+    /// Queries answered by the closed form for balls and solid tori ([`super::offset`]),
+    /// without a traversal.
+    pub closed_forms: usize,
     /// Patch pairs whose kernel needed a sampled scan, bounded below by subdivision
     /// ([`super::certify`]).
     pub subdivided_pairs: usize,
@@ -71,6 +74,7 @@ impl TraversalStats {
         self.leaf_tests_ns += o.leaf_tests_ns;
         self.bound_tests += o.bound_tests;
         self.max_queue = self.max_queue.max(o.max_queue);
+        self.closed_forms += o.closed_forms;
         self.subdivided_pairs += o.subdivided_pairs;
         self.budget_exhausted |= o.budget_exhausted;
     }

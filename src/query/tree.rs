@@ -4,6 +4,7 @@
 //! the original curve piece under it and its approximation. Revolved, the disk is a solid
 //! torus containing the corresponding part of the solid's boundary (see [`super::bounds`]).
 
+use super::offset::{detect, OffsetSolid};
 use super::patch::{Patch, ProfileArc};
 use crate::biarc::{Arc as BiarcArc, BiarcTree};
 use crate::profile::ProfileKind;
@@ -132,6 +133,9 @@ pub struct QueryTree {
     /// (checked by [`QueryTree::index_chain`]); empty otherwise. Point-in-solid tests use it
     /// to skip whole subtrees ([`super::containment`]).
     pub node_ends: Vec<Option<[Point2<f64>; 2]>>,
+    /// The solid is a ball or a solid torus (the chain is one circle): queries between two
+    /// such solids take the closed form of [`super::offset`] instead of a traversal.
+    pub offset: Option<OffsetSolid>,
 }
 
 impl QueryTree {
@@ -152,12 +156,14 @@ impl QueryTree {
             eps: leaves.iter().map(|l| l.eps).fold(0.0, f64::max),
             target_eps: 0.0,
             node_ends: Vec::new(),
+            offset: None,
         };
         t.target_eps = t.eps;
         if !leaves.is_empty() {
             t.root = t.build(&leaves);
         }
         t.index_chain();
+        t.offset = detect(&t.chain, t.kind, t.eps);
         t
     }
 
@@ -216,6 +222,7 @@ impl QueryTree {
             eps: 0.0,
             target_eps: 0.0,
             node_ends: Vec::new(),
+            offset: None,
         };
         let roots: Vec<u32> = bt
             .spirals()
@@ -233,6 +240,7 @@ impl QueryTree {
             t.root = t.build_upper(&roots);
         }
         t.index_chain();
+        t.offset = detect(&t.chain, t.kind, t.eps);
         t
     }
 

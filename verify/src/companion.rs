@@ -82,7 +82,7 @@ pub fn polish_root(power: &[f64], x: f64) -> f64 {
         }
         let next = x - p / dp;
         let (pn, dpn) = eval(next);
-        if !(pn.abs() < p.abs()) {
+        if pn.is_nan() || pn.abs() >= p.abs() {
             break;
         }
         (x, p, dp) = (next, pn, dpn);

@@ -60,6 +60,9 @@ enum Command {
         /// Leave out the fixed regression cases.
         #[arg(long)]
         no_regressions: bool,
+        /// Draw every solid from the balls and solid tori (closed-form queries).
+        #[arg(long)]
+        primitives: bool,
     },
     /// revdist against FCL meshes (certified tessellations) on the paper models and M_t
     /// frames, and against CGAL / libccd on convex pairs; writes crosscheck.md, .csv and
@@ -132,6 +135,7 @@ fn main() {
             random_profiles,
             show,
             no_regressions,
+            primitives,
         } => {
             if eps.is_empty() || eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
                 eprintln!("error: --eps needs positive numbers, got {eps:?}");
@@ -146,6 +150,7 @@ fn main() {
                 random_profiles,
                 regressions: !no_regressions,
                 print_failures: show,
+                primitives,
             };
             let s = verify::queries::run(&opts);
             if let Err(e) = s.write_reproducers() {

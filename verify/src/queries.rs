@@ -51,6 +51,9 @@ pub struct CampaignOptions {
     pub regressions: bool,
     /// Failures printed in full.
     pub print_failures: usize,
+    /// Draw every solid from the balls and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`,
+    /// `sphere`), whose queries take the closed form of `revdist::query::offset`.
+    pub primitives: bool,
 }
 
 impl Default for CampaignOptions {
@@ -64,6 +67,7 @@ impl Default for CampaignOptions {
             random_profiles: 0,
             regressions: true,
             print_failures: 25,
+            primitives: false,
         }
     }
 }
@@ -345,7 +349,42 @@ pub fn build_pool(seed: u64, n_random: usize) -> Vec<Shape> {
         let (p, _) = random_profile(&mut rng, &name, size);
         push(name, p, true);
     }
+    for (name, p) in primitive_profiles() {
+        push(name, p, false);
+    }
     shapes
+}
+
+/// Name prefix of the balls and solid tori appended to the pool (after every other shape,
+/// so the default campaign's draws are unchanged).
+pub const PRIMITIVE_PREFIX: &str = "prim-";
+
+/// Balls and solid tori of several proportions (one circle per profile): a thin ring that
+/// interlocks with itself, a fat one, a small ball, a ball off the origin and a big ball
+/// (room for nesting).
+fn primitive_profiles() -> Vec<(String, Profile)> {
+    use revdist::models::primitives::{arc, deg};
+    let torus = |name: &str, rho: f64, z: f64, r: f64| {
+        let c = arc([rho, z], r, deg(-90.0), deg(270.0)).expect("valid circle");
+        (
+            name.to_string(),
+            Profile::new(name, vec![c]).expect("valid torus"),
+        )
+    };
+    let ball = |name: &str, z: f64, r: f64| {
+        let c = arc([0.0, z], r, deg(-90.0), deg(90.0)).expect("valid half circle");
+        (
+            name.to_string(),
+            Profile::new(name, vec![c]).expect("valid ball"),
+        )
+    };
+    vec![
+        torus("prim-torus-thin", 1.0, 0.0, 0.12),
+        torus("prim-torus-fat", 0.5, 0.2, 0.45),
+        ball("prim-ball", 0.0, 0.3),
+        ball("prim-ball-high", 0.7, 0.5),
+        ball("prim-ball-big", 0.0, 3.5),
+    ]
 }
 
 /// The straight-span profile (a cubic with three collinear control points on
@@ -539,7 +578,21 @@ fn place_at_gap(
 }
 
 /// Draws a shape index from the pool: built-in, M_t frame or random (of a size class).
-fn pick(rng: &mut SplitMix64, shapes: &[Shape], class: Option<&str>) -> usize {
+fn pick(rng: &mut SplitMix64, shapes: &[Shape], class: Option<&str>, primitives: bool) -> usize {
+    if primitives {
+        let prims: Vec<usize> = (0..shapes.len())
+            .filter(|&i| {
+                let n = &shapes[i].name;
+                n.starts_with(PRIMITIVE_PREFIX) || n == "ring" || n == "sphere"
+            })
+            .filter(|&i| match class {
+                Some("big") => shapes[i].size >= 3.0,
+                Some("tiny") => shapes[i].size < 1.0,
+                _ => true,
+            })
+            .collect();
+        return prims[rng.int(0, prims.len() - 1)];
+    }
     let random: Vec<usize> = (0..shapes.len())
         .filter(|&i| shapes[i].random && shapes[i].name.starts_with("rand"))
         .collect();
@@ -599,7 +652,13 @@ fn interior_point(rng: &mut SplitMix64, a: &Shape, depth: f64) -> Option<Vector3
 }
 
 /// Generates case `id` (deterministic in the seed and id).
-pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64]) -> Case {
+pub fn make_case(
+    id: usize,
+    seed: u64,
+    shapes: &[Shape],
+    eps_list: &[f64],
+    primitives: bool,
+) -> Case {
     let mut rng = SplitMix64(seed).fork(0xCA5E_0000 + id as u64);
     let eps = eps_list[rng.int(0, eps_list.len() - 1)];
     // Half the queries run with the default tolerance (the trees' accuracy), a third run to
@@ -637,7 +696,10 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64]) -> Ca
     };
     match kind {
         PoseKind::Far => {
-            let (a, b) = (pick(&mut rng, shapes, None), pick(&mut rng, shapes, None));
+            let (a, b) = (
+                pick(&mut rng, shapes, None, primitives),
+                pick(&mut rng, shapes, None, primitives),
+            );
             let (q, _) = draw_rotation(&mut rng);
             let r = if rng.chance(0.5) { 1e3 } else { 1e6 };
             let u = Vector3::from(rng.unit_vector());
@@ -645,7 +707,7 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64]) -> Ca
             case(kind, a, b, pose, format!("|t| ~ {r:e}"))
         }
         PoseKind::Coincident => {
-            let a = pick(&mut rng, shapes, None);
+            let a = pick(&mut rng, shapes, None, primitives);
             case(
                 kind,
                 a,
@@ -655,8 +717,8 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64]) -> Ca
             )
         }
         PoseKind::Nested | PoseKind::NestedNear => {
-            let a = pick(&mut rng, shapes, Some("big"));
-            let b = pick(&mut rng, shapes, Some("tiny"));
+            let a = pick(&mut rng, shapes, Some("big"), primitives);
+            let b = pick(&mut rng, shapes, Some("tiny"), primitives);
             let (q, _) = draw_rotation(&mut rng);
             let rb = shapes[b].index.geom.radius;
             if let Some(p0) = interior_point(&mut rng, &shapes[a], 1.1 * rb) {
@@ -697,7 +759,10 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64]) -> Ca
             }
         }
         _ => {
-            let (a, b) = (pick(&mut rng, shapes, None), pick(&mut rng, shapes, None));
+            let (a, b) = (
+                pick(&mut rng, shapes, None, primitives),
+                pick(&mut rng, shapes, None, primitives),
+            );
             let scale = shapes[a].size.max(shapes[b].size);
             let target = match kind {
                 PoseKind::Separated => rng.log_range(0.03, 1.0) * scale,
@@ -988,7 +1053,7 @@ fn run_inner(opts: &CampaignOptions) -> Summary {
                     Some(c) => c.clone(),
                     None => {
                         let made = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                            make_case(i - n_fixed, opts.seed, &shapes, &opts.eps)
+                            make_case(i - n_fixed, opts.seed, &shapes, &opts.eps, opts.primitives)
                         }));
                         match made {
                             Ok(c) => c,
