@@ -135,6 +135,45 @@ struct BodySpec {
     interpolation: Option<String>,
     #[serde(default)]
     random_motion: Option<RandomMotionSpec>,
+    #[serde(default)]
+    torus: Option<TorusSpec>,
+    #[serde(default)]
+    mass: Option<f64>,
+    #[serde(default)]
+    density: Option<f64>,
+    #[serde(default)]
+    velocity: Option<Vec<f64>>,
+    #[serde(default)]
+    angular_velocity: Option<Vec<f64>>,
+}
+
+/// A thin torus: a circle of radius `minor` about `(rho, z) = (major, 0)`, revolved.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TorusSpec {
+    pub major: f64,
+    pub minor: f64,
+}
+
+/// A generated mesh of interlocked rings (see the module docs).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RingMeshSpec {
+    name: String,
+    rows: usize,
+    cols: usize,
+    major: f64,
+    minor: f64,
+    #[serde(default)]
+    spacing: Option<f64>,
+    #[serde(default)]
+    center: Option<Vec<f64>>,
+    #[serde(default)]
+    effect: Option<String>,
+    #[serde(default)]
+    density: Option<f64>,
+    #[serde(default)]
+    twist: Option<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -165,8 +204,20 @@ struct SceneSpec {
     within: Option<f64>,
     #[serde(default)]
     render: Option<RenderSpec>,
-    #[serde(rename = "body")]
+    #[serde(default)]
+    gravity: Option<Vec<f64>>,
+    #[serde(default)]
+    substeps: Option<usize>,
+    #[serde(default)]
+    contact_skin: Option<f64>,
+    #[serde(default)]
+    friction: Option<f64>,
+    #[serde(default)]
+    solver_iterations: Option<usize>,
+    #[serde(default, rename = "body")]
     bodies: Vec<BodySpec>,
+    #[serde(default, rename = "ring_mesh")]
+    ring_meshes: Vec<RingMeshSpec>,
 }
 
 /// Rendered frames: every `every`-th frame as a PNG, seen from `eye` towards `target`.
@@ -202,7 +253,14 @@ pub struct Render {
 pub enum Shape {
     Model(String),
     ProfileFile(PathBuf),
-    Morph { period: f64 },
+    Morph {
+        period: f64,
+    },
+    /// A circle of radius `minor` about `(major, 0)` revolved about the z axis.
+    Torus {
+        major: f64,
+        minor: f64,
+    },
 }
 
 /// How a body's pose changes.
@@ -227,6 +285,53 @@ pub enum Effect {
     Static,
     Kinematic(Track),
     Deforming,
+    /// A rigid body under gravity with contacts ([`crate::dynamics`]).
+    Dynamic(DynamicBody),
+}
+
+/// How a dynamic body's mass is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MassSpec {
+    /// Total mass; the density is uniform.
+    Mass(f64),
+    /// Uniform density (mass per unit volume).
+    Density(f64),
+}
+
+/// A dynamic body's mass and initial velocities (world frame, velocity of the centre of
+/// mass; angular velocity in radians per second).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicBody {
+    pub mass: MassSpec,
+    pub velocity: Vector3<f64>,
+    pub angular_velocity: Vector3<f64>,
+}
+
+/// Scene-level settings of the dynamics (used only when some body is dynamic).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicsSettings {
+    /// Gravitational acceleration (length units per second squared).
+    pub gravity: Vector3<f64>,
+    /// Solver steps per frame.
+    pub substeps: usize,
+    /// Gap the contacts aim for; `None`: 8 times the query width.
+    pub contact_skin: Option<f64>,
+    /// Coulomb friction coefficient.
+    pub friction: f64,
+    /// Sequential-impulse sweeps per step.
+    pub solver_iterations: usize,
+}
+
+impl Default for DynamicsSettings {
+    fn default() -> Self {
+        DynamicsSettings {
+            gravity: Vector3::new(0.0, 0.0, -9.81),
+            substeps: 10,
+            contact_skin: None,
+            friction: 0.5,
+            solver_iterations: 10,
+        }
+    }
 }
 
 /// A checked body.
@@ -257,7 +362,12 @@ pub struct Scene {
     pub within: Option<f64>,
     /// Rendered frames, when the scene asks for them.
     pub render: Option<Render>,
+    /// Settings of the dynamics (defaults when the file gives none).
+    pub dynamics: DynamicsSettings,
     pub bodies: Vec<Body>,
+    /// Pairs of bodies that a generator built interlocked (ring meshes); their linking is
+    /// checked at the start and the end of a run.
+    pub links: Vec<(usize, usize)>,
 }
 
 impl Scene {
@@ -289,6 +399,13 @@ impl Scene {
     /// Number of frames: times `0, dt, 2 dt, ...` up to the duration.
     pub fn frames(&self) -> usize {
         (self.duration / self.time_step + 1e-9).floor() as usize + 1
+    }
+
+    /// Whether some body is dynamic (then the runner steps the dynamics).
+    pub fn has_dynamics(&self) -> bool {
+        self.bodies
+            .iter()
+            .any(|b| matches!(b.effect, Effect::Dynamic(_)))
     }
 
     /// The index of the body called `name`.
@@ -386,13 +503,13 @@ fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, SceneError> {
         return Err(field_error(format!("{f}.name"), "must not be empty"));
     }
     let f = format!("body[{i}] ('{}')", b.name);
-    let shape = match (&b.model, &b.profile, &b.morph) {
-        (Some(m), None, None) => {
+    let shape = match (&b.model, &b.profile, &b.morph, &b.torus) {
+        (Some(m), None, None, None) => {
             revdist::models::model(m)
                 .map_err(|e| field_error(format!("{f}.model"), e.to_string()))?;
             Shape::Model(m.clone())
         }
-        (None, Some(p), None) => {
+        (None, Some(p), None, None) => {
             let path = base.join(p);
             if !path.is_file() {
                 return Err(field_error(
@@ -402,13 +519,14 @@ fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, SceneError> {
             }
             Shape::ProfileFile(path)
         }
-        (None, None, Some(m)) => Shape::Morph {
+        (None, None, Some(m), None) => Shape::Morph {
             period: positive(&format!("{f}.morph.period"), m.period)?,
         },
+        (None, None, None, Some(t)) => torus_shape(&format!("{f}.torus"), t.major, t.minor)?,
         _ => {
             return Err(field_error(
                 f,
-                "give exactly one of model, profile or morph",
+                "give exactly one of model, profile, morph or torus",
             ))
         }
     };
@@ -452,24 +570,228 @@ fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, SceneError> {
             Effect::Kinematic(check_track(&f, b, &pose)?)
         }
         "dynamic" => {
-            return Err(field_error(
-                format!("{f}.effect"),
-                "'dynamic' (rigid bodies under gravity) is not available in this build",
-            ))
+            if has_track {
+                return Err(field_error(
+                    format!("{f}.effect"),
+                    "a dynamic body moves under gravity and contacts: remove keyframes/random_motion",
+                ));
+            }
+            if matches!(shape, Shape::Morph { .. }) {
+                return Err(field_error(
+                    format!("{f}.effect"),
+                    "a dynamic body must be rigid: a morph body can only be 'deforming'",
+                ));
+            }
+            Effect::Dynamic(check_dynamic(&f, b)?)
         }
         other => {
             return Err(field_error(
                 format!("{f}.effect"),
-                format!("unknown effect '{other}' (static, kinematic or deforming)"),
+                format!("unknown effect '{other}' (static, kinematic, deforming or dynamic)"),
             ))
         }
     };
+    if !matches!(effect, Effect::Dynamic(_)) {
+        for (name, given) in [
+            ("mass", b.mass.is_some()),
+            ("density", b.density.is_some()),
+            ("velocity", b.velocity.is_some()),
+            ("angular_velocity", b.angular_velocity.is_some()),
+        ] {
+            if given {
+                return Err(field_error(
+                    format!("{f}.{name}"),
+                    format!("only dynamic bodies take {name} (effect is '{}')", b.effect),
+                ));
+            }
+        }
+    }
     Ok(Body {
         name: b.name.clone(),
         shape,
         effect,
         pose,
     })
+}
+
+fn torus_shape(field: &str, major: f64, minor: f64) -> Result<Shape, SceneError> {
+    let major = positive(&format!("{field}.major"), major)?;
+    let minor = positive(&format!("{field}.minor"), minor)?;
+    if minor >= major {
+        return Err(field_error(
+            format!("{field}.minor"),
+            format!("must be below major ({major}) so that the torus has a hole, got {minor}"),
+        ));
+    }
+    Ok(Shape::Torus { major, minor })
+}
+
+fn check_dynamic(f: &str, b: &BodySpec) -> Result<DynamicBody, SceneError> {
+    let mass = match (b.mass, b.density) {
+        (Some(_), Some(_)) => {
+            return Err(field_error(
+                format!("{f}.mass"),
+                "give mass or density, not both",
+            ))
+        }
+        (Some(m), None) => MassSpec::Mass(positive(&format!("{f}.mass"), m)?),
+        (None, Some(d)) => MassSpec::Density(positive(&format!("{f}.density"), d)?),
+        (None, None) => MassSpec::Density(1.0),
+    };
+    let velocity = match &b.velocity {
+        Some(v) => vec3(&format!("{f}.velocity"), v)?,
+        None => Vector3::zeros(),
+    };
+    let angular_velocity = match &b.angular_velocity {
+        Some(v) => vec3(&format!("{f}.angular_velocity"), v)?,
+        None => Vector3::zeros(),
+    };
+    Ok(DynamicBody {
+        mass,
+        velocity,
+        angular_velocity,
+    })
+}
+
+/// The bodies of a ring mesh: a `rows` x `cols` grid of horizontal rings (axis z) with centre
+/// spacing `spacing`, and one vertical link ring between each pair of grid neighbours, centred
+/// between them in the vertical plane through their centres, so that it passes through both
+/// holes. Returns the bodies and the interlocked pairs (link, ring).
+fn ring_mesh_bodies(
+    k: usize,
+    m: &RingMeshSpec,
+    first_index: usize,
+) -> Result<(Vec<Body>, Vec<(usize, usize)>), SceneError> {
+    let f = format!("ring_mesh[{k}] ('{}')", m.name);
+    if m.name.trim().is_empty() {
+        return Err(field_error(
+            format!("ring_mesh[{k}].name"),
+            "must not be empty",
+        ));
+    }
+    if m.rows == 0 || m.cols == 0 || m.rows * m.cols > 400 {
+        return Err(field_error(
+            format!("{f}.rows"),
+            format!(
+                "rows and cols must be 1..400 rings in all, got {} x {}",
+                m.rows, m.cols
+            ),
+        ));
+    }
+    let shape = torus_shape(&f, m.major, m.minor)?;
+    let (major, minor) = (m.major, m.minor);
+    // A link centred between two ring centres at distance D crosses each ring's plane at
+    // o = D / 2 - major from that ring's centre. Its tube must clear the hole's rim:
+    // o < major - 2 minor. Two links through the same ring cross at o along perpendicular
+    // (or opposite) directions, o sqrt(2) apart at least, so o > sqrt(2) minor keeps their
+    // tubes apart there (and the rings, 2 o apart, do not touch). Default o = 2 minor.
+    let spacing = m.spacing.unwrap_or(2.0 * major + 4.0 * minor);
+    let lo = 2.0 * major + 2.0 * std::f64::consts::SQRT_2 * minor;
+    let hi = 2.0 * major + 2.0 * (major - 2.0 * minor);
+    if !(spacing.is_finite() && spacing > lo && spacing < hi) {
+        return Err(field_error(
+            format!("{f}.spacing"),
+            format!(
+                "must lie in ({lo}, {hi}) so that neighbours do not touch and links pass through both holes, got {spacing}"
+            ),
+        ));
+    }
+    let centre = match &m.center {
+        Some(c) => vec3(&format!("{f}.center"), c)?,
+        None => Vector3::zeros(),
+    };
+    let twist = m.twist.unwrap_or(0.0);
+    if !twist.is_finite() {
+        return Err(field_error(format!("{f}.twist"), "must be finite"));
+    }
+    let effect_name = m.effect.clone().unwrap_or_else(|| "dynamic".into());
+    let dynamic = match effect_name.as_str() {
+        "dynamic" => true,
+        "static" => false,
+        o => {
+            return Err(field_error(
+                format!("{f}.effect"),
+                format!("unknown effect '{o}' for a ring mesh (dynamic or static)"),
+            ))
+        }
+    };
+    if m.density.is_some() && !dynamic {
+        return Err(field_error(
+            format!("{f}.density"),
+            "only dynamic bodies take density",
+        ));
+    }
+    let effect = if dynamic {
+        Effect::Dynamic(DynamicBody {
+            mass: MassSpec::Density(match m.density {
+                Some(d) => positive(&format!("{f}.density"), d)?,
+                None => 1.0,
+            }),
+            velocity: Vector3::zeros(),
+            angular_velocity: Vector3::zeros(),
+        })
+    } else {
+        Effect::Static
+    };
+    // The whole mesh is turned by `twist` about the vertical through `center`.
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), twist);
+    let x0 = -0.5 * spacing * (m.cols - 1) as f64;
+    let y0 = -0.5 * spacing * (m.rows - 1) as f64;
+    let at = |x: f64, y: f64| centre + turn * Vector3::new(x0 + x, y0 + y, 0.0);
+    let mut bodies = Vec::new();
+    let mut links = Vec::new();
+    let ring_index = |r: usize, c: usize| first_index + r * m.cols + c;
+    for r in 0..m.rows {
+        for c in 0..m.cols {
+            let p = at(c as f64 * spacing, r as f64 * spacing);
+            bodies.push(Body {
+                name: format!("{}_r{r}c{c}", m.name),
+                shape: shape.clone(),
+                effect: effect.clone(),
+                pose: Isometry3::from_parts(Translation3::from(p), turn),
+            });
+        }
+    }
+    // Links along x (between (r, c) and (r, c + 1)), then along y. A link's axis is
+    // horizontal and perpendicular to the line between the two centres.
+    let mut add_link =
+        |bodies: &mut Vec<Body>, a: usize, b: usize, p: Vector3<f64>, along_x: bool| {
+            let to_vertical = if along_x {
+                // local z -> world y: the link lies in the xz plane.
+                UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::FRAC_PI_2)
+            } else {
+                // local z -> world x: the link lies in the yz plane.
+                UnitQuaternion::from_axis_angle(&Vector3::y_axis(), std::f64::consts::FRAC_PI_2)
+            };
+            let index = first_index + bodies.len();
+            bodies.push(Body {
+                name: format!("{}_link_{}_{}", m.name, a - first_index, b - first_index),
+                shape: shape.clone(),
+                effect: effect.clone(),
+                pose: Isometry3::from_parts(Translation3::from(p), turn * to_vertical),
+            });
+            links.push((index, a));
+            links.push((index, b));
+        };
+    for r in 0..m.rows {
+        for c in 0..m.cols {
+            if c + 1 < m.cols {
+                let p = at((c as f64 + 0.5) * spacing, r as f64 * spacing);
+                add_link(&mut bodies, ring_index(r, c), ring_index(r, c + 1), p, true);
+            }
+            if r + 1 < m.rows {
+                let p = at(c as f64 * spacing, (r as f64 + 0.5) * spacing);
+                add_link(
+                    &mut bodies,
+                    ring_index(r, c),
+                    ring_index(r + 1, c),
+                    p,
+                    false,
+                );
+            }
+        }
+    }
+    Ok((bodies, links))
 }
 
 fn check_track(f: &str, b: &BodySpec, pose: &Isometry3<f64>) -> Result<Track, SceneError> {
@@ -587,8 +909,11 @@ fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneError> {
         None => None,
         Some(w) => Some(positive("within", w)?),
     };
-    if spec.bodies.is_empty() {
-        return Err(field_error("body", "a scene needs at least one body"));
+    if spec.bodies.is_empty() && spec.ring_meshes.is_empty() {
+        return Err(field_error(
+            "body",
+            "a scene needs at least one body (missing field `body`)",
+        ));
     }
     let mut bodies: Vec<Body> = Vec::with_capacity(spec.bodies.len());
     for (i, b) in spec.bodies.iter().enumerate() {
@@ -601,6 +926,28 @@ fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneError> {
         }
         bodies.push(body);
     }
+    let mut links = Vec::new();
+    for (k, m) in spec.ring_meshes.iter().enumerate() {
+        let (generated, l) = ring_mesh_bodies(k, m, bodies.len())?;
+        for body in generated {
+            if bodies.iter().any(|o| o.name == body.name) {
+                return Err(field_error(
+                    format!("ring_mesh[{k}].name"),
+                    format!("body name '{}' is used twice", body.name),
+                ));
+            }
+            bodies.push(body);
+        }
+        links.extend(l);
+    }
+    let dynamics = check_dynamics(
+        &spec.gravity,
+        spec.substeps,
+        spec.contact_skin,
+        spec.friction,
+        spec.solver_iterations,
+        &bodies,
+    )?;
     let measure = match spec.measure {
         None => Measure::All,
         Some(MeasureSpec::Keyword(k)) if k == "all" => Measure::All,
@@ -685,6 +1032,79 @@ fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneError> {
         measure,
         within,
         render,
+        dynamics,
         bodies,
+        links,
+    })
+}
+
+fn check_dynamics(
+    gravity: &Option<Vec<f64>>,
+    substeps: Option<usize>,
+    contact_skin: Option<f64>,
+    friction: Option<f64>,
+    solver_iterations: Option<usize>,
+    bodies: &[Body],
+) -> Result<DynamicsSettings, SceneError> {
+    let d = DynamicsSettings::default();
+    let gravity = match gravity {
+        Some(g) => vec3("gravity", g)?,
+        None => d.gravity,
+    };
+    let substeps = match substeps {
+        None => d.substeps,
+        Some(n @ 1..=10_000) => n,
+        Some(n) => {
+            return Err(field_error(
+                "substeps",
+                format!("must be 1..10000 steps per frame, got {n}"),
+            ))
+        }
+    };
+    let contact_skin = match contact_skin {
+        None => None,
+        Some(s) => Some(positive("contact_skin", s)?),
+    };
+    let friction = match friction {
+        None => d.friction,
+        Some(mu) if mu.is_finite() && mu >= 0.0 => mu,
+        Some(mu) => {
+            return Err(field_error(
+                "friction",
+                format!("must be finite and >= 0, got {mu}"),
+            ))
+        }
+    };
+    let solver_iterations = match solver_iterations {
+        None => d.solver_iterations,
+        Some(n @ 1..=1000) => n,
+        Some(n) => {
+            return Err(field_error(
+                "solver_iterations",
+                format!("must be 1..1000, got {n}"),
+            ))
+        }
+    };
+    if bodies
+        .iter()
+        .any(|b| matches!(b.effect, Effect::Dynamic(_)))
+    {
+        // Contacts are only with bodies whose motion the solver bounds (static: none).
+        for (i, b) in bodies.iter().enumerate() {
+            if matches!(b.effect, Effect::Kinematic(_) | Effect::Deforming) {
+                return Err(field_error(
+                    format!("body[{i}] ('{}').effect", b.name),
+                    "a scene with dynamic bodies can only have static and dynamic bodies \
+                     (contacts with kinematic or deforming bodies are not supported)",
+                ));
+            }
+        }
+    }
+    Ok(DynamicsSettings {
+        gravity,
+        substeps,
+        contact_skin,
+        friction,
+        solver_iterations,
     })
 }
