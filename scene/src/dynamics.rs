@@ -330,6 +330,38 @@ impl World {
         })
     }
 
+    /// Checks that no pair with a dynamic body starts inside the clearance (such a pair could
+    /// never move): queries every pair whose bounding spheres are that close.
+    pub fn check_start(&mut self, scene: &Scene, solids: &[Solid]) -> Result<(), String> {
+        let n = self.bodies.len();
+        let spheres: Vec<(Point3<f64>, f64)> =
+            self.bodies.iter().map(|b| b.world_sphere()).collect();
+        for i in 0..n {
+            for j in i + 1..n {
+                if !(self.bodies[i].dynamic || self.bodies[j].dynamic) {
+                    continue;
+                }
+                let gap = (spheres[i].0 - spheres[j].0).norm() - spheres[i].1 - spheres[j].1;
+                if gap >= self.clearance {
+                    continue;
+                }
+                let cache = self.caches.entry((i, j)).or_default();
+                let d = distance_cached(&solids[i], &solids[j], &self.opts, cache);
+                if d.lower < self.clearance {
+                    return Err(format!(
+                        "bodies '{}' and '{}' start {} (certified lower bound {:e}), closer than the contact clearance {:e} (contact_skin / 4)",
+                        scene.bodies[i].name,
+                        scene.bodies[j].name,
+                        if d.overlap { "overlapping" } else { "too close" },
+                        d.lower,
+                        self.clearance
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Kinetic and potential energy of the dynamic bodies.
     pub fn energy(&self) -> (f64, f64) {
         let g = self.settings.gravity;

@@ -614,6 +614,9 @@ fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, SceneError> {
     })
 }
 
+/// A pair of bodies built interlocked (body indices).
+pub type Link = (usize, usize);
+
 fn torus_shape(field: &str, major: f64, minor: f64) -> Result<Shape, SceneError> {
     let major = positive(&format!("{field}.major"), major)?;
     let minor = positive(&format!("{field}.minor"), minor)?;
@@ -661,7 +664,7 @@ fn ring_mesh_bodies(
     k: usize,
     m: &RingMeshSpec,
     first_index: usize,
-) -> Result<(Vec<Body>, Vec<(usize, usize)>), SceneError> {
+) -> Result<(Vec<Body>, Vec<Link>), SceneError> {
     let f = format!("ring_mesh[{k}] ('{}')", m.name);
     if m.name.trim().is_empty() {
         return Err(field_error(

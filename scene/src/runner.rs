@@ -229,7 +229,8 @@ pub fn run(
         // The widest interval a query returns: the requested width, or what the leaves
         // allow (2 (e_a + e_b) <= 4 eps), whichever is wider.
         let width = opts.tolerance.width(eps_max, eps_max).max(4.0 * eps_max);
-        let w = World::new(scene, &solids, opts, width).map_err(RunError::Dynamics)?;
+        let mut w = World::new(scene, &solids, opts, width).map_err(RunError::Dynamics)?;
+        w.check_start(scene, &solids).map_err(RunError::Dynamics)?;
         counters.mass_computations = w.mass_computations;
         let start = links_intact(scene, &solids.iter().map(|s| s.pose).collect::<Vec<_>>());
         if start != scene.links.len() {

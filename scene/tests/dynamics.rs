@@ -1,0 +1,291 @@
+//! The `dynamic` effect: mass properties against closed forms, a ring dropped on the table,
+//! an interlocked chain, the counters (no dynamics work unless asked for, static-static pairs
+//! never queried) and the errors of bad dynamic fields.
+
+use revdist_scene::format::{Scene, SceneError};
+use revdist_scene::mass::mass_properties;
+use revdist_scene::runner::{run, torus_profile, Counters, Frame};
+use std::f64::consts::PI;
+use std::path::Path;
+
+fn parse(text: &str) -> Result<Scene, SceneError> {
+    Scene::parse(text, Path::new("."))
+}
+
+/// Runs a scene, keeping every frame.
+fn run_frames(scene: &Scene) -> (Counters, Vec<Frame>) {
+    let mut frames = Vec::new();
+    let c = run(scene, |f| {
+        frames.push(f.clone());
+        Ok(())
+    })
+    .unwrap();
+    (c, frames)
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// Solid torus (R, r): V = 2 pi^2 R r^2, I_z = m (R^2 + 3 r^2 / 4), I_xy = m (R^2 / 2 + 5 r^2
+/// / 8); ball of radius a: V = 4 pi a^3 / 3, I = 2 m a^2 / 5, centre on the axis.
+#[test]
+fn mass_properties_match_closed_forms() {
+    for (big, small) in [(1.0, 0.12), (0.1, 0.012), (0.9, 0.6)] {
+        let p = torus_profile(big, small).unwrap();
+        let mp = mass_properties(&p, Some(2.0), None).unwrap();
+        let v = 2.0 * PI * PI * big * small * small;
+        let m = 2.0 * v;
+        assert!(
+            rel(mp.volume, v) < 1e-4,
+            "torus volume {} vs {v}",
+            mp.volume
+        );
+        assert!(rel(mp.mass, m) < 1e-4);
+        assert!(mp.com_z.abs() < 1e-9 * big, "com {}", mp.com_z);
+        let iz = m * (big * big + 0.75 * small * small);
+        let ixy = m * (0.5 * big * big + 0.625 * small * small);
+        assert!(rel(mp.inertia_z, iz) < 2e-4, "I_z {} vs {iz}", mp.inertia_z);
+        assert!(
+            rel(mp.inertia_xy, ixy) < 2e-4,
+            "I_xy {} vs {ixy}",
+            mp.inertia_xy
+        );
+    }
+    let ball = revdist::models::model("sphere").unwrap();
+    let mp = mass_properties(&ball, None, Some(3.0)).unwrap();
+    let a: f64 = 0.75;
+    let v = 4.0 / 3.0 * PI * a.powi(3);
+    assert!(rel(mp.volume, v) < 1e-4, "ball volume {} vs {v}", mp.volume);
+    assert!(rel(mp.mass, 3.0) < 1e-12);
+    assert!((mp.com_z - 0.75).abs() < 1e-6, "com {}", mp.com_z);
+    let i = 0.4 * 3.0 * a * a;
+    assert!(rel(mp.inertia_z, i) < 2e-4 && rel(mp.inertia_xy, i) < 2e-4);
+}
+
+/// Checks of every dynamic frame: no overlap, every certified lower bound positive, the
+/// energy never increasing from one step to the next (beyond rounding). Returns the smallest
+/// lower bound.
+fn check_frames(frames: &[Frame]) -> f64 {
+    let mut min_lower = f64::INFINITY;
+    let mut prev = None;
+    for f in frames {
+        let d = f.dynamics.as_ref().expect("dynamic frame");
+        let e = d.kinetic + d.potential;
+        let tol = 1e-12 * (d.potential.abs() + d.kinetic) + 1e-15;
+        assert_eq!(d.report.overlaps, 0, "frame {}", f.index);
+        assert!(
+            d.report.max_energy_increase <= tol,
+            "frame {}: a step gained {:e}",
+            f.index,
+            d.report.max_energy_increase
+        );
+        if let Some(p) = prev {
+            assert!(e <= p + tol, "frame {}: energy {e} after {p}", f.index);
+        }
+        prev = Some(e);
+        min_lower = min_lower.min(d.report.min_lower);
+        for s in &f.samples {
+            assert!(!s.overlap && s.lower > 0.0, "frame {}: {:?}", f.index, s);
+            min_lower = min_lower.min(s.lower);
+        }
+    }
+    assert!(min_lower > 0.0);
+    min_lower
+}
+
+/// A ring dropped on the table falls, lands and comes to rest on the top (z = 1.46): its gap
+/// stays positive, its energy never grows, and it ends nearly at rest just above the top.
+#[test]
+fn ring_dropped_on_table_comes_to_rest() {
+    let text = "duration = 1.0\ntime_step = 0.02\neps = 1e-4\nsubsteps = 10\n\
+        [[body]]\nname = \"table\"\nmodel = \"table\"\neffect = \"static\"\n\
+        [[body]]\nname = \"ring\"\ntorus = { major = 0.1, minor = 0.012 }\neffect = \"dynamic\"\n\
+        pose = { translation = [0.1, 0.05, 1.62], axis = [1.0, 0.4, 0.0], angle = 0.25 }\n";
+    let scene = parse(text).unwrap();
+    let (c, frames) = run_frames(&scene);
+    assert_eq!(c.frames, 51);
+    assert_eq!(c.dynamics_steps, 500);
+    assert_eq!(c.mass_computations, 1);
+    let min_lower = check_frames(&frames);
+    let first = frames[0].dynamics.as_ref().unwrap();
+    let last = frames.last().unwrap();
+    let d = last.dynamics.as_ref().unwrap();
+    // It fell: about m g (1.62 - 1.472) of potential energy went.
+    assert!(d.potential < first.potential * 0.95);
+    // At rest: kinetic energy below 1e-3 of what the fall released.
+    let released = first.potential - d.potential;
+    assert!(
+        d.kinetic < 1e-3 * released,
+        "kinetic {} of {released}",
+        d.kinetic
+    );
+    // On the top: the ring's centre just above 1.46 + minor radius, within a few skins.
+    let z = last.poses[1].translation.vector.z;
+    assert!((1.46 + 0.012..1.46 + 0.012 + 0.02).contains(&z), "z = {z}");
+    // The gap to the table stays positive and ends within a few skins.
+    let gap = last.samples[0].lower;
+    assert!(gap > 0.0 && gap < 0.01, "gap {gap}, min {min_lower}");
+}
+
+/// Three interlocked rings (two horizontal rings and the link between them) fall onto the
+/// table: no overlap in any step, the link intact in every frame, the energy never growing.
+#[test]
+fn interlocked_chain_stays_linked() {
+    let text = "duration = 0.6\ntime_step = 0.02\neps = 1e-4\nsubsteps = 10\n\
+        [[body]]\nname = \"table\"\nmodel = \"table\"\neffect = \"static\"\n\
+        [[ring_mesh]]\nname = \"chain\"\nrows = 1\ncols = 2\nmajor = 0.1\nminor = 0.012\n\
+        center = [0.0, 0.0, 1.7]\ntwist = 0.4\n";
+    let scene = parse(text).unwrap();
+    assert_eq!(scene.bodies.len(), 4);
+    assert_eq!(scene.links.len(), 2);
+    let (c, frames) = run_frames(&scene);
+    check_frames(&frames);
+    for f in &frames {
+        assert_eq!(
+            f.dynamics.as_ref().unwrap().links_intact,
+            2,
+            "frame {}",
+            f.index
+        );
+    }
+    // They fell onto the table: every ring ends below its start and above the top.
+    let last = frames.last().unwrap();
+    for i in 1..4 {
+        let z = last.poses[i].translation.vector.z;
+        assert!(z < 1.7 - 0.05 && z > 1.46, "ring {i} at z = {z}");
+    }
+    assert!(c.dynamics_queries[1] > 0 && c.dynamics_queries[0] > 0);
+    assert_eq!(c.dynamics_static_static_queries, 0);
+}
+
+/// No dynamic body: no dynamics at all (no steps, no mass properties, no contact queries, no
+/// dynamics in the frames), whatever dynamics settings the file gives.
+#[test]
+fn no_dynamics_without_dynamic_bodies() {
+    let text = "duration = 0.2\ntime_step = 0.1\neps = 1e-3\ngravity = [0.0, 0.0, -1.0]\nsubsteps = 5\n\
+        [[body]]\nname = \"a\"\nmodel = \"sphere\"\neffect = \"static\"\n\
+        [[body]]\nname = \"b\"\ntorus = { major = 0.5, minor = 0.1 }\neffect = \"static\"\npose = { translation = [2.0, 0.0, 0.0] }\n";
+    let scene = parse(text).unwrap();
+    assert!(!scene.has_dynamics());
+    let (c, frames) = run_frames(&scene);
+    assert_eq!(c.dynamics_steps, 0);
+    assert_eq!(c.mass_computations, 0);
+    assert_eq!(c.dynamics_queries, [0, 0]);
+    assert_eq!(c.dynamics_pair_checks, 0);
+    assert_eq!(c.queries, vec![1]);
+    assert!(frames.iter().all(|f| f.dynamics.is_none()));
+    assert!(frames.iter().all(|f| f.cost.dynamics == 0.0));
+}
+
+/// Static-static pairs are never looked at by the solver, even when they touch-close; far
+/// dynamic pairs are left to the broad phase.
+#[test]
+fn static_pairs_are_never_queried() {
+    let text = "duration = 0.1\ntime_step = 0.02\neps = 1e-3\nsubsteps = 2\nmeasure = [[\"s1\", \"d\"]]\n\
+        [[body]]\nname = \"s1\"\nmodel = \"cylinder\"\neffect = \"static\"\n\
+        [[body]]\nname = \"s2\"\nmodel = \"cone\"\neffect = \"static\"\npose = { translation = [1.11, 0.0, 0.0] }\n\
+        [[body]]\nname = \"d\"\nmodel = \"sphere\"\neffect = \"dynamic\"\npose = { translation = [0.0, 0.0, 1.6] }\n\
+        [[body]]\nname = \"far\"\nmodel = \"sphere\"\neffect = \"dynamic\"\npose = { translation = [30.0, 0.0, 0.0] }\n";
+    let scene = parse(text).unwrap();
+    let (c, frames) = run_frames(&scene);
+    check_frames(&frames);
+    assert_eq!(c.dynamics_steps, 10);
+    assert_eq!(c.dynamics_static_static_queries, 0);
+    // 5 pairs with a dynamic body are checked per step (s1-d, s1-far, s2-d, s2-far, d-far);
+    // s1-s2 never.
+    assert_eq!(c.dynamics_pair_checks, 5 * 10);
+    // Only the pairs near the falling sphere are queried: s1-d and s2-d (spheres within
+    // reach); the far sphere's pairs never are.
+    assert_eq!(c.dynamics_queries[1], 0);
+    assert!(c.dynamics_queries[0] <= 2 * 10 && c.dynamics_queries[0] >= 10);
+    assert_eq!(c.mass_computations, 2);
+}
+
+fn error_of(text: &str) -> String {
+    match parse(text) {
+        Ok(_) => panic!("accepted: {text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// Bad dynamic fields: each error names the field and the problem.
+#[test]
+fn bad_dynamic_fields_name_the_field() {
+    let head = "duration = 1.0\ntime_step = 0.1\neps = 1e-3\n";
+    let body = "[[body]]\nname = \"a\"\nmodel = \"sphere\"\neffect = \"dynamic\"\n";
+    let dynamic = |extra: &str| format!("{head}{body}{extra}\n");
+    let cases = [
+        (dynamic("velocity = [1.0, 2.0]"), "body[0] ('a').velocity: expected 3 numbers, got 2"),
+        (
+            dynamic("angular_velocity = [1.0, 2.0, 3.0, 4.0]"),
+            "body[0] ('a').angular_velocity: expected 3 numbers, got 4",
+        ),
+        (dynamic("mass = -1.0"), "body[0] ('a').mass: must be a positive number"),
+        (dynamic("density = 0.0"), "body[0] ('a').density: must be a positive number"),
+        (dynamic("mass = 1.0\ndensity = 2.0"), "body[0] ('a').mass: give mass or density, not both"),
+        (dynamic("keyframes = []"), "body[0] ('a').effect: a dynamic body moves under gravity"),
+        (dynamic("spin = 1.0"), "unknown field `spin`"),
+        (
+            format!("{head}[[body]]\nname = \"a\"\nmodel = \"sphere\"\neffect = \"static\"\nvelocity = [0.0, 0.0, 1.0]\n"),
+            "body[0] ('a').velocity: only dynamic bodies take velocity",
+        ),
+        (
+            format!("{head}[[body]]\nname = \"a\"\nmodel = \"sphere\"\neffect = \"static\"\nmass = 2.0\n"),
+            "body[0] ('a').mass: only dynamic bodies take mass",
+        ),
+        (format!("{head}gravity = [0.0, -9.81]\n{body}"), "gravity: expected 3 numbers, got 2"),
+        (format!("{head}substeps = 0\n{body}"), "substeps: must be 1..10000"),
+        (format!("{head}contact_skin = -0.1\n{body}"), "contact_skin: must be a positive number"),
+        (format!("{head}friction = -0.5\n{body}"), "friction: must be finite and >= 0"),
+        (format!("{head}solver_iterations = 0\n{body}"), "solver_iterations: must be 1..1000"),
+        (
+            format!("{head}[[body]]\nname = \"t\"\ntorus = {{ major = 0.1, minor = 0.2 }}\neffect = \"dynamic\"\n"),
+            "body[0] ('t').torus.minor: must be below major",
+        ),
+        (
+            format!("{head}[[body]]\nname = \"t\"\ntorus = {{ major = 0.1 }}\neffect = \"dynamic\"\n"),
+            "missing field `minor`",
+        ),
+        (
+            format!("{head}[[body]]\nname = \"k\"\nmodel = \"cone\"\neffect = \"kinematic\"\nrandom_motion = {{ seed = 1, amplitude = 0.1, period = 1.0 }}\n{}", body.replace("\"a\"", "\"d\"")),
+            "body[0] ('k').effect: a scene with dynamic bodies can only have static and dynamic bodies",
+        ),
+        (
+            format!("{head}[[ring_mesh]]\nname = \"m\"\nrows = 2\ncols = 2\nmajor = 0.1\nminor = 0.012\nspacing = 0.2\n"),
+            "ring_mesh[0] ('m').spacing: must lie in",
+        ),
+        (
+            format!("{head}[[ring_mesh]]\nname = \"m\"\nrows = 0\ncols = 2\nmajor = 0.1\nminor = 0.012\n"),
+            "ring_mesh[0] ('m').rows",
+        ),
+        (
+            format!("{head}[[ring_mesh]]\nname = \"m\"\nrows = 1\ncols = 2\nmajor = 0.1\nminor = 0.012\ncenter = [0.0, 1.0]\n"),
+            "ring_mesh[0] ('m').center: expected 3 numbers, got 2",
+        ),
+    ];
+    for (text, expected) in cases {
+        let e = error_of(&text);
+        assert!(
+            e.contains(expected),
+            "error {e:?} should mention {expected:?}"
+        );
+    }
+}
+
+/// A contact skin too thin for the queries' certified width, or bodies starting inside the
+/// clearance, are refused when the run starts.
+#[test]
+fn unsafe_starts_are_refused() {
+    let thin = "duration = 0.1\ntime_step = 0.02\neps = 1e-3\ncontact_skin = 1e-3\n\
+        [[body]]\nname = \"a\"\nmodel = \"sphere\"\neffect = \"dynamic\"\n";
+    let scene = parse(thin).unwrap();
+    let e = run(&scene, |_| Ok(())).unwrap_err().to_string();
+    assert!(e.contains("contact_skin"), "{e}");
+    let close = "duration = 0.1\ntime_step = 0.02\neps = 1e-3\n\
+        [[body]]\nname = \"a\"\nmodel = \"sphere\"\neffect = \"static\"\n\
+        [[body]]\nname = \"b\"\nmodel = \"sphere\"\neffect = \"dynamic\"\npose = { translation = [1.0, 0.0, 0.0] }\n";
+    let scene = parse(close).unwrap();
+    let e = run(&scene, |_| Ok(())).unwrap_err().to_string();
+    assert!(e.contains("'a' and 'b' start overlapping"), "{e}");
+}
