@@ -24,6 +24,11 @@
 //!    spheres are within `cap_i + cap_j + clearance` (`cap_i = 2 |motion_i| + skin`, the most
 //!    the body will be allowed to move in this step) is queried: a certified interval
 //!    `[lower, upper]` and witness points `p_a`, `p_b`. Static-static pairs are never looked at.
+//!    A pair whose lower bound comes within the query width `W` of the clearance is asked
+//!    again at the narrowest width the trees allow (`Tolerance::Absolute(0)`; exact circles,
+//!    as a torus's, give an interval of rounding width), and the larger certified lower bound
+//!    is kept. Otherwise a pair whose true gap is just above the clearance could get a lower
+//!    bound just below it, and step 4 would stop it for good.
 //! 3. Contacts (sequential impulses, restitution 0, Coulomb friction): for each queried pair
 //!    the normal `n = (p_b - p_a) / |p_b - p_a|` and the relative normal velocity `u_n` of the
 //!    witness points. Speculative: `u_n >= -(lower - skin) / h` while `lower > skin` (the pair
@@ -85,7 +90,7 @@
 use crate::format::{DynamicsSettings, Effect, MassSpec, Scene};
 use crate::mass::{mass_properties, MassProperties};
 use nalgebra::{Isometry3, Matrix3, Point3, Translation3, UnitQuaternion, Vector3};
-use revdist::query::{distance_cached, QueryCache, QueryOptions};
+use revdist::query::{distance_cached, QueryCache, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::collections::HashMap;
 
@@ -184,6 +189,8 @@ pub struct StepReport {
     pub static_static_queries: usize,
     /// Pairs looked at by the broad phase.
     pub pair_checks: usize,
+    /// Second queries at the narrowest width, for pairs near the clearance.
+    pub tight_queries: usize,
     /// Smallest certified lower bound of the step's queries (infinity without queries).
     pub min_lower: f64,
     /// Smallest bounding-sphere gap of a pair not queried.
@@ -217,6 +224,7 @@ impl StepReport {
         self.queries[1] += o.queries[1];
         self.static_static_queries += o.static_static_queries;
         self.pair_checks += o.pair_checks;
+        self.tight_queries += o.tight_queries;
         self.min_lower = self.min_lower.min(o.min_lower);
         self.min_sphere_gap = self.min_sphere_gap.min(o.min_sphere_gap);
         self.scaled += o.scaled;
@@ -251,6 +259,8 @@ pub struct World {
     pub skin: f64,
     /// Hard clearance of step 4 (`skin / 4`).
     pub clearance: f64,
+    /// Widest certified interval a query returns at the scene's tolerance.
+    pub width: f64,
     opts: QueryOptions,
     caches: HashMap<(usize, usize), QueryCache>,
     /// Mass-property computations made (one per dynamic body).
@@ -324,6 +334,7 @@ impl World {
             settings: scene.dynamics,
             skin,
             clearance,
+            width,
             opts,
             caches: HashMap::new(),
             mass_computations,
@@ -420,7 +431,21 @@ impl World {
                     continue;
                 }
                 let cache = self.caches.entry((i, j)).or_default();
-                let d = distance_cached(&solids[i], &solids[j], &self.opts, cache);
+                let mut d = distance_cached(&solids[i], &solids[j], &self.opts, cache);
+                if !d.overlap && d.lower < self.clearance + self.width {
+                    // Near the clearance: ask for the narrowest interval the trees allow, so
+                    // that the lower bound is close to the true gap (which step 4 keeps
+                    // >= clearance); both answers are certified, keep the better bound.
+                    let tight = QueryOptions {
+                        tolerance: Tolerance::Absolute(0.0),
+                        ..self.opts
+                    };
+                    let t = distance_cached(&solids[i], &solids[j], &tight, cache);
+                    rep.tight_queries += 1;
+                    if t.overlap || t.lower > d.lower {
+                        d = t;
+                    }
+                }
                 if di && dj {
                     rep.queries[1] += 1;
                 } else if di || dj {

@@ -130,7 +130,7 @@ pub fn summary(
 }
 
 /// Header of the per-frame dynamics CSV (`<scene>-dynamics.csv`).
-pub const DYNAMICS_CSV_HEADER: &str = "frame,time,kinetic,potential,energy,max_step_energy_increase,steps,queries_static_dynamic,queries_dynamic_dynamic,pair_checks,min_lower,min_sphere_gap_unqueried,bodies_scaled,bodies_stopped,energy_guard_steps,links_intact,dynamics_ms";
+pub const DYNAMICS_CSV_HEADER: &str = "frame,time,kinetic,potential,energy,max_step_energy_increase,steps,queries_static_dynamic,queries_dynamic_dynamic,pair_checks,tight_queries,min_lower,min_sphere_gap_unqueried,bodies_scaled,bodies_stopped,energy_guard_steps,links_intact,dynamics_ms";
 
 /// One row of the dynamics CSV (frames of a dynamic scene).
 pub fn dynamics_csv_row(frame: &Frame, out: &mut impl Write) -> std::io::Result<()> {
@@ -147,7 +147,7 @@ pub fn dynamics_csv_row(frame: &Frame, out: &mut impl Write) -> std::io::Result<
     };
     writeln!(
         out,
-        "{},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
+        "{},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
         frame.index,
         frame.time,
         d.kinetic,
@@ -158,6 +158,7 @@ pub fn dynamics_csv_row(frame: &Frame, out: &mut impl Write) -> std::io::Result<
         r.queries[0],
         r.queries[1],
         r.pair_checks,
+        r.tight_queries,
         fin(r.min_lower),
         fin(r.min_sphere_gap),
         r.scaled,
@@ -291,6 +292,10 @@ impl DynamicsTally {
                     "{per_step:.1} ({} + {})",
                     counters.dynamics_queries[0], counters.dynamics_queries[1]
                 ),
+            ),
+            (
+                "second queries at the narrowest width (pairs near the clearance)",
+                counters.dynamics_tight_queries.to_string(),
             ),
             (
                 "static-static queries",

@@ -73,6 +73,8 @@ pub struct Counters {
     pub dynamics_steps: usize,
     /// Dynamics: contact queries, static-dynamic and dynamic-dynamic.
     pub dynamics_queries: [usize; 2],
+    /// Dynamics: second queries at the narrowest width (pairs near the clearance).
+    pub dynamics_tight_queries: usize,
     /// Dynamics: queries between two non-dynamic bodies (never made).
     pub dynamics_static_static_queries: usize,
     /// Dynamics: pairs looked at by the solver's broad phase.
@@ -287,6 +289,7 @@ pub fn run(
                 counters.dynamics_queries[1] += r.queries[1];
                 counters.dynamics_static_static_queries += r.static_static_queries;
                 counters.dynamics_pair_checks += r.pair_checks;
+                counters.dynamics_tight_queries += r.tight_queries;
                 if r.overlaps > 0 {
                     return Err(RunError::Dynamics(format!(
                         "frame {index}: a contact query reported overlap (a bug: the step bounds forbid it)"
