@@ -24,12 +24,14 @@
 //!    spheres are within `cap_i + cap_j + clearance` (`cap_i = 2 |motion_i| + skin`, the most
 //!    the body will be allowed to move in this step) is queried: a certified interval
 //!    `[lower, upper]` and witness points `p_a`, `p_b`. Static-static pairs are never looked at.
-//!    A pair whose lower bound comes within the query width `W` of the clearance is asked
+//!    A pair whose lower bound falls below the clearance is asked
 //!    again at the narrowest width the trees allow (`Tolerance::Absolute(0)`; exact circles,
 //!    as a torus's, give an interval of rounding width), and the larger certified lower bound
 //!    is kept. Otherwise a pair whose true gap is just above the clearance could get a lower
 //!    bound just below it, and step 4 would stop it for good.
-//! 3. Contacts (sequential impulses, restitution 0, Coulomb friction): for each queried pair
+//! 3. Contacts (sequential impulses, restitution 0, Coulomb friction), plus a few witness
+//!    pairs of earlier steps per pair as extra speculative contacts (a small manifold that
+//!    only shapes the velocities). For each queried pair
 //!    the normal `n = (p_b - p_a) / |p_b - p_a|` and the relative normal velocity `u_n` of the
 //!    witness points. Speculative: `u_n >= -(lower - skin) / h` while `lower > skin` (the pair
 //!    may close up to the skin in this step, no impulse before that), `u_n >= 0` in the skin,
@@ -249,7 +251,22 @@ struct Contact {
     target: f64,
     lambda_n: f64,
     lambda_t: [f64; 2],
+    /// The pair's certified contact (its `lower` drives step 4); `false` for the extra
+    /// points of the pair's manifold, which only shape the velocities.
+    certified: bool,
 }
+
+/// A witness pair remembered from an earlier step, in the bodies' local frames.
+#[derive(Debug, Clone, Copy)]
+struct Stored {
+    a: Point3<f64>,
+    b: Point3<f64>,
+    /// Normal in body `i`'s frame.
+    n: Vector3<f64>,
+}
+
+/// Most remembered witness pairs per body pair.
+const MANIFOLD_POINTS: usize = 4;
 
 /// The dynamics of a scene.
 pub struct World {
@@ -263,6 +280,7 @@ pub struct World {
     pub width: f64,
     opts: QueryOptions,
     caches: HashMap<(usize, usize), QueryCache>,
+    manifolds: HashMap<(usize, usize), Vec<Stored>>,
     /// Mass-property computations made (one per dynamic body).
     pub mass_computations: usize,
 }
@@ -337,6 +355,7 @@ impl World {
             width,
             opts,
             caches: HashMap::new(),
+            manifolds: HashMap::new(),
             mass_computations,
         })
     }
@@ -432,7 +451,7 @@ impl World {
                 }
                 let cache = self.caches.entry((i, j)).or_default();
                 let mut d = distance_cached(&solids[i], &solids[j], &self.opts, cache);
-                if !d.overlap && d.lower < self.clearance + self.width {
+                if !d.overlap && d.lower < self.clearance {
                     // Near the clearance: ask for the narrowest interval the trees allow, so
                     // that the lower bound is close to the true gap (which step 4 keeps
                     // >= clearance); both answers are certified, keep the better bound.
@@ -463,7 +482,10 @@ impl World {
                     .try_normalize(1e-300)
                     .or_else(|| (bj.x - bi.x).try_normalize(1e-300))
                     .unwrap_or(Vector3::z());
-                contacts.push(self.contact(i, j, d.lower, d.point_a, d.point_b, n_dir, h));
+                let mut main = self.contact(i, j, d.lower, d.point_a, d.point_b, n_dir, h);
+                main.certified = true;
+                contacts.push(main);
+                self.manifold_contacts(i, j, &d, n_dir, solids, h, &mut contacts);
             }
         }
         // 3. Contacts.
@@ -481,7 +503,7 @@ impl World {
         let mut pass = 0;
         loop {
             let mut violated = false;
-            for c in &contacts {
+            for c in contacts.iter().filter(|c| c.certified) {
                 let allowed = (c.lower - self.clearance).max(0.0);
                 let s = self.pair_motion(c.i, c.j, h);
                 if s <= allowed {
@@ -602,6 +624,57 @@ impl World {
             target,
             lambda_n: 0.0,
             lambda_t: [0.0; 2],
+            certified: false,
+        }
+    }
+
+    /// The pair's small contact manifold: witness pairs of earlier steps (kept while their
+    /// points stay within a few skins of each other and have not slid apart) become extra
+    /// speculative contacts at their current estimated gap, and the new witness pair joins
+    /// them unless an old one is close to it. These contacts only shape the velocities (a
+    /// ring lying on the table is held at several points instead of rocking about one);
+    /// the no-overlap guarantee rests on the certified contact alone (step 4).
+    #[allow(clippy::too_many_arguments)]
+    fn manifold_contacts(
+        &mut self,
+        i: usize,
+        j: usize,
+        d: &revdist::query::Distance,
+        n: Vector3<f64>,
+        solids: &[Solid],
+        h: f64,
+        out: &mut Vec<Contact>,
+    ) {
+        let (pose_i, pose_j) = (solids[i].pose, solids[j].pose);
+        let reach = 3.0 * self.skin;
+        let slack = d.upper - d.lower;
+        let spread = 0.1 * self.bodies[i].sphere.1.min(self.bodies[j].sphere.1);
+        let mut kept: Vec<Stored> = Vec::new();
+        let stored = self.manifolds.remove(&(i, j)).unwrap_or_default();
+        for st in stored {
+            let (pa, pb) = (pose_i * st.a, pose_j * st.b);
+            let nw = pose_i.rotation * st.n;
+            let sep = pb - pa;
+            let gap = sep.dot(&nw);
+            let slide = (sep - nw * gap).norm();
+            if gap > reach || slide > self.skin || (pa - d.point_a).norm() < spread {
+                continue;
+            }
+            out.push(self.contact(i, j, (gap - slack).max(0.0), pa, pb, nw, h));
+            kept.push(st);
+        }
+        if d.lower < reach {
+            if kept.len() >= MANIFOLD_POINTS {
+                kept.remove(0);
+            }
+            kept.push(Stored {
+                a: pose_i.inverse_transform_point(&d.point_a),
+                b: pose_j.inverse_transform_point(&d.point_b),
+                n: pose_i.rotation.inverse_transform_vector(&n),
+            });
+        }
+        if !kept.is_empty() {
+            self.manifolds.insert((i, j), kept);
         }
     }
 
