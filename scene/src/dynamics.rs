@@ -48,21 +48,24 @@
 //!    potential by `-m g . v h`; the rotation keeps `L` and, for an axially symmetric body,
 //!    the rotational energy, see below); if it would exceed the energy at the start of the
 //!    step, all velocities are scaled by the largest `c <= 1` that prevents it.
-//! 6. Move: `x += v h`, `R = exp(w h) R` (rotation about the fixed axis `w` at a constant
-//!    rate), `L` unchanged.
+//! 6. Move: `x += v h`; the rotation is the exact torque-free motion of an axially
+//!    symmetric body with angular momentum `L` (unchanged): `R = exp(h L / I_xy) R
+//!    exp(h (1 / I_z - 1 / I_xy) (L . e_z) e_z)`, a precession of the axis `e_z = R z` about
+//!    `L` composed with a spin about the body's own axis.
 //!
 //! # Theorem (no overlap)
 //!
 //! If at the start of a step every pair's solids are disjoint, then at every time of the step
 //! they are disjoint, and the true distance of every queried pair stays `>= clearance`.
 //!
-//! **Proof.** During step 6 a point `p` of body `i` (offset `r = p - x_i` from the centre of
-//! mass, `|r| <= rho_i`) follows `x_i + v_i t + exp(w_i t) r`, `t in [0, h]`: a straight motion
-//! at speed `|v_i|` plus a rotation at rate `|w_i|` about an axis through the centre, whose
-//! speed is at most `|w_i| |r|`. For two points `p` of `i` and `q` of `j`, `(q - p)(t) - (q -
-//! p)(0) = (v_j - v_i) t + (exp(w_j t) - 1) r_j - (exp(w_i t) - 1) r_i`, of length at most
-//! `s_ij` (step 4's bound; a rotation by angle `a` moves a point at radius `r` by
-//! `2 r sin(a/2) <= r a`). So the distance of every pair of points, and hence of the solids
+//! **Proof.** During step 6 body `i` moves rigidly: its centre at constant velocity `v_i`,
+//! its orientation along the torque-free motion `R_i(t)`, whose angular velocity
+//! `w_i(t) = L_i / I_xy + (1 / I_z - 1 / I_xy) (L_i . e_z) e_z(t)` has constant length
+//! `|w_i|` (`L_i` and `L_i . e_z` are constant). A point `p` of body `i` at offset `r(t)`
+//! from the centre (`|r| <= rho_i`) has velocity `v_i + w_i(t) x r(t)`, of length at most
+//! `|v_i| + |w_i| rho_i`. For two points `p` of `i` and `q` of `j`, the derivative of
+//! `q - p` is `(v_j - v_i) + w_j x r_j - w_i x r_i`, so over the step `q - p` changes by at
+//! most `s_ij` (step 4's bound). So the distance of every pair of points, and hence of the solids
 //! (the infimum over points; solids, not surfaces, since every point of both solids is
 //! covered), drops by at most `s_ij` during the step. Queried pair: the distance was at
 //! least `lower_ij` (certified) and `s_ij <= lower_ij - clearance` (step 4), so it stays
@@ -80,10 +83,12 @@
 //! # Energy
 //!
 //! Restitution is 0 and every velocity scaling multiplies a body's kinetic energy by
-//! `c^2 <= 1`. Semi-implicit Euler loses `m |g|^2 h^2 / 2` per step in free fall. A free
-//! rotation about the fixed axis `w` keeps `w . e_z` (the component of `w` along the moving
-//! body axis `e_z`), hence `L . e_z`, hence the rotational energy `(|L|^2 - (L . e_z)^2) /
-//! (2 I_xy) + (L . e_z)^2 / (2 I_z)` of an axially symmetric body, exactly. Sequential
+//! `c^2 <= 1`. Semi-implicit Euler loses `m |g|^2 h^2 / 2` per step in free fall. The
+//! rotation of step 6 keeps `L . e_z` (a rotation about `L` and a spin about `e_z`), hence
+//! the rotational energy `(|L|^2 - (L . e_z)^2) / (2 I_xy) + (L . e_z)^2 / (2 I_z)` of an
+//! axially symmetric body, exactly. (Rotating about the fixed axis `w` for the whole step,
+//! the textbook update, does not: it gained 0.2% of the rotational energy per step on a
+//! spinning ring, which is why the exact flow is used.) Sequential
 //! impulses with accumulated clamping can in principle add energy (an impulse relaxed in a
 //! later sweep), and the push apart below half the skin adds some; step 5 removes any such
 //! gain, so the total energy (kinetic + gravitational) never increases from one step to the
@@ -551,10 +556,20 @@ impl World {
             if !b.dynamic {
                 continue;
             }
-            let w = b.omega();
             b.x += b.v * h;
-            b.rotation = UnitQuaternion::from_scaled_axis(w * h) * b.rotation;
-            b.rotation.renormalize();
+            // The exact torque-free motion of an axially symmetric body: the axis precesses
+            // about L at rate |L| / I_xy while the body spins about its axis at rate
+            // (1 / I_z - 1 / I_xy) (L . e_z).
+            if let Some(m) = b.mass {
+                let lz = b.l.dot(&(b.rotation * Vector3::z()));
+                let precession = UnitQuaternion::from_scaled_axis(b.l * (h / m.inertia_xy));
+                let spin = UnitQuaternion::from_axis_angle(
+                    &Vector3::z_axis(),
+                    (1.0 / m.inertia_z - 1.0 / m.inertia_xy) * lz * h,
+                );
+                b.rotation = precession * b.rotation * spin;
+                b.rotation.renormalize();
+            }
             solid.pose = b.pose();
         }
         let (k1, p1) = self.energy();
