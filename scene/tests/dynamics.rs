@@ -352,3 +352,106 @@ fn free_flight_energy() {
         "{got} vs {expected}"
     );
 }
+
+/// The example ring mesh: 25 rings and 40 links, every link through both of its rings'
+/// holes at the start (linking number +-1 for all 80 pairs).
+#[test]
+fn ring_mesh_example_is_interlocked() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments/scenes/ring_mesh.toml");
+    let scene = Scene::load(&path).unwrap();
+    assert_eq!(scene.bodies.len(), 66);
+    assert_eq!(scene.links.len(), 80);
+    let poses: Vec<_> = scene.bodies.iter().map(|b| b.pose).collect();
+    assert_eq!(revdist_scene::runner::links_intact(&scene, &poses), 80);
+}
+
+/// Random throws: a few rings with random poses, velocities and spins dropped together on
+/// the table; no step may let two solids overlap, and the energy never grows.
+#[test]
+fn random_throws_never_overlap() {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for seed in 0..4 {
+        let mut text = String::from(
+            "duration = 0.3\ntime_step = 0.02\neps = 1e-4\nsubsteps = 5\n\
+             [[body]]\nname = \"table\"\nmodel = \"table\"\neffect = \"static\"\n",
+        );
+        for k in 0..3 {
+            text.push_str(&format!(
+                "[[body]]\nname = \"r{k}\"\ntorus = {{ major = 0.1, minor = 0.02 }}\neffect = \"dynamic\"\n\
+                 pose = {{ translation = [{}, {}, {}], axis = [{}, {}, 1.0], angle = {} }}\n\
+                 velocity = [{}, {}, {}]\nangular_velocity = [{}, {}, {}]\n",
+                0.15 * rnd(),
+                0.15 * rnd() + 0.25 * (k as f64 - 1.0),
+                1.6 + 0.06 * k as f64,
+                rnd(),
+                rnd(),
+                2.0 * rnd(),
+                rnd(),
+                rnd(),
+                -2.0 + rnd(),
+                20.0 * rnd(),
+                20.0 * rnd(),
+                20.0 * rnd()
+            ));
+        }
+        let scene = parse(&text).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        let (c, frames) = run_frames(&scene);
+        check_frames(&frames);
+        assert!(c.dynamics_queries[0] > 0, "seed {seed}");
+    }
+}
+
+/// Longer stress run (`cargo test --release -p revdist-scene --test dynamics -- --ignored`):
+/// piles of 12 thrown rings, `STRESS_SEEDS` seeds (default 10), one second each.
+#[test]
+#[ignore]
+fn stress_random_piles() {
+    let seeds: u64 = std::env::var("STRESS_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10);
+    let mut worst = f64::INFINITY;
+    for seed in 0..seeds {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64 ^ (seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut text = String::from(
+            "duration = 1.0\ntime_step = 0.02\neps = 1e-4\nsubsteps = 10\n\
+             [[body]]\nname = \"table\"\nmodel = \"table\"\neffect = \"static\"\n",
+        );
+        for k in 0..12 {
+            let (col, row, layer) = (k % 2, (k / 2) % 2, k / 4);
+            text.push_str(&format!(
+                "[[body]]\nname = \"r{k}\"\ntorus = {{ major = 0.1, minor = 0.015 }}\neffect = \"dynamic\"\n\
+                 pose = {{ translation = [{}, {}, {}], axis = [{}, {}, 1.0], angle = {} }}\n\
+                 velocity = [{}, {}, {}]\nangular_velocity = [{}, {}, {}]\n",
+                0.25 * (col as f64 - 0.5) + 0.01 * rnd(),
+                0.25 * (row as f64 - 0.5) + 0.01 * rnd(),
+                1.62 + 0.25 * layer as f64,
+                rnd(),
+                rnd(),
+                0.5 * rnd(),
+                0.5 * rnd(),
+                0.5 * rnd(),
+                -1.0 + rnd(),
+                10.0 * rnd(),
+                10.0 * rnd(),
+                10.0 * rnd()
+            ));
+        }
+        let scene = parse(&text).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        let (_, frames) = run_frames(&scene);
+        worst = worst.min(check_frames(&frames));
+    }
+    eprintln!("smallest certified lower bound over {seeds} piles: {worst:e}");
+}
