@@ -1,6 +1,9 @@
 //! `revdist-scene FILE [--out DIR]`: runs a scene (also reached as `revdist scene FILE`).
 //! Writes `DIR/<scene>.csv` (every measured pair in every frame) and `DIR/<scene>.md` (what
-//! was computed and what it cost). Errors are printed as `error: ...` with exit status 2.
+//! was computed and what it cost); a scene with dynamic bodies also gets
+//! `DIR/<scene>-dynamics.csv` (per frame: energy, contact queries, smallest certified gap,
+//! velocity scalings, links intact, cost) and a dynamics section in the summary. Errors are
+//! printed as `error: ...` with exit status 2.
 
 use clap::Parser;
 use revdist_scene::format::Scene;
