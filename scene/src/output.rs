@@ -130,7 +130,7 @@ pub fn summary(
 }
 
 /// Header of the per-frame dynamics CSV (`<scene>-dynamics.csv`).
-pub const DYNAMICS_CSV_HEADER: &str = "frame,time,kinetic,potential,energy,max_step_energy_increase,steps,queries_static_dynamic,queries_dynamic_dynamic,pair_checks,tight_queries,min_lower,min_sphere_gap_unqueried,bodies_scaled,bodies_stopped,energy_guard_steps,links_intact,dynamics_ms";
+pub const DYNAMICS_CSV_HEADER: &str = "frame,time,kinetic,potential,energy,max_step_energy_increase,steps,queries_static_dynamic,queries_dynamic_dynamic,pair_checks,tight_queries,min_lower,min_lower_unqueried,carried_skips,bodies_scaled,bodies_stopped,energy_guard_steps,links_intact,dynamics_ms";
 
 /// One row of the dynamics CSV (frames of a dynamic scene).
 pub fn dynamics_csv_row(frame: &Frame, out: &mut impl Write) -> std::io::Result<()> {
@@ -147,7 +147,7 @@ pub fn dynamics_csv_row(frame: &Frame, out: &mut impl Write) -> std::io::Result<
     };
     writeln!(
         out,
-        "{},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
+        "{},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
         frame.index,
         frame.time,
         d.kinetic,
@@ -160,7 +160,8 @@ pub fn dynamics_csv_row(frame: &Frame, out: &mut impl Write) -> std::io::Result<
         r.pair_checks,
         r.tight_queries,
         fin(r.min_lower),
-        fin(r.min_sphere_gap),
+        fin(r.min_unqueried),
+        r.carried_skips,
         r.scaled,
         r.stopped,
         r.energy_guard,
@@ -179,7 +180,7 @@ pub struct DynamicsTally {
     pub max_step_increase: f64,
     pub max_frame_increase: f64,
     pub min_lower: f64,
-    pub min_sphere_gap: f64,
+    pub min_unqueried: f64,
     pub links_start: usize,
     pub links_end: usize,
     pub steps: usize,
@@ -196,7 +197,7 @@ impl DynamicsTally {
     pub fn new() -> DynamicsTally {
         DynamicsTally {
             min_lower: f64::INFINITY,
-            min_sphere_gap: f64::INFINITY,
+            min_unqueried: f64::INFINITY,
             max_step_increase: f64::NEG_INFINITY,
             max_frame_increase: f64::NEG_INFINITY,
             ..DynamicsTally::default()
@@ -223,7 +224,7 @@ impl DynamicsTally {
         let r = &d.report;
         self.max_step_increase = self.max_step_increase.max(r.max_energy_increase);
         self.min_lower = self.min_lower.min(r.min_lower);
-        self.min_sphere_gap = self.min_sphere_gap.min(r.min_sphere_gap);
+        self.min_unqueried = self.min_unqueried.min(r.min_unqueried);
         self.steps += r.steps;
         self.queries += r.queries[0] + r.queries[1];
         self.scaled += r.scaled;
@@ -261,8 +262,8 @@ impl DynamicsTally {
                 format!("{:e}", self.min_lower),
             ),
             (
-                "smallest bounding-sphere gap of a pair not queried",
-                format!("{:e}", self.min_sphere_gap),
+                "smallest certified lower bound of a pair not queried (spheres or carried)",
+                format!("{:e}", self.min_unqueried),
             ),
             ("queries reporting overlap", self.overlaps.to_string()),
             (
@@ -292,6 +293,10 @@ impl DynamicsTally {
                     "{per_step:.1} ({} + {})",
                     counters.dynamics_queries[0], counters.dynamics_queries[1]
                 ),
+            ),
+            (
+                "pairs within reach of their bounding spheres, skipped by a carried bound",
+                counters.dynamics_carried_skips.to_string(),
             ),
             (
                 "second queries at the narrowest width (pairs near the clearance)",

@@ -73,6 +73,9 @@ pub struct Counters {
     pub dynamics_steps: usize,
     /// Dynamics: contact queries, static-dynamic and dynamic-dynamic.
     pub dynamics_queries: [usize; 2],
+    /// Dynamics: pairs within reach by their bounding spheres but not queried because the
+    /// bound carried from their last query was enough.
+    pub dynamics_carried_skips: usize,
     /// Dynamics: second queries at the narrowest width (pairs near the clearance).
     pub dynamics_tight_queries: usize,
     /// Dynamics: queries between two non-dynamic bodies (never made).
@@ -290,6 +293,7 @@ pub fn run(
                 counters.dynamics_static_static_queries += r.static_static_queries;
                 counters.dynamics_pair_checks += r.pair_checks;
                 counters.dynamics_tight_queries += r.tight_queries;
+                counters.dynamics_carried_skips += r.carried_skips;
                 if r.overlaps > 0 {
                     return Err(RunError::Dynamics(format!(
                         "frame {index}: a contact query reported overlap (a bug: the step bounds forbid it)"
