@@ -546,7 +546,7 @@ impl World {
                     continue;
                 }
                 violated = true;
-                let factor = if pass < SCALING_PASSES && s > 0.0 {
+                let factor = if pass < SCALING_PASSES && s.is_finite() && s > 0.0 {
                     allowed / s
                 } else {
                     0.0
