@@ -494,3 +494,40 @@ fn dynamic_outputs_report_gap_energy_links_and_queries() {
     }
     assert!(tally.min_lower > 0.0 && tally.steps == 40);
 }
+
+/// A chain hanging from a static ring: two dynamic links drop until they hang on the ring
+/// and on each other (contacts in tension), then swing; the links never break or overlap.
+#[test]
+fn chain_hangs_from_a_static_ring() {
+    use revdist_scene::links::{core_circle, linking_number};
+    let text = "duration = 1.0\ntime_step = 0.02\neps = 1e-4\nsubsteps = 10\n\
+        [[body]]\nname = \"hook\"\ntorus = { major = 0.1, minor = 0.012 }\neffect = \"static\"\n\
+        pose = { translation = [0.0, 0.0, 2.0] }\n\
+        [[body]]\nname = \"b\"\ntorus = { major = 0.1, minor = 0.012 }\neffect = \"dynamic\"\n\
+        pose = { translation = [0.12, 0.0, 2.0], axis = [1.0, 0.0, 0.0], angle = 1.5707963267948966 }\n\
+        [[body]]\nname = \"c\"\ntorus = { major = 0.1, minor = 0.012 }\neffect = \"dynamic\"\n\
+        pose = { translation = [0.12, 0.0, 1.86], axis = [0.0, 1.0, 0.0], angle = 1.5707963267948966 }\n\
+        angular_velocity = [0.0, 0.0, 3.0]\n";
+    let scene = parse(text).unwrap();
+    let linked = |poses: &[nalgebra::Isometry3<f64>], a: usize, b: usize| {
+        linking_number(&core_circle(&poses[a], 0.1), &core_circle(&poses[b], 0.1)).abs() == 1
+    };
+    let poses: Vec<_> = scene.bodies.iter().map(|b| b.pose).collect();
+    assert!(linked(&poses, 0, 1) && linked(&poses, 1, 2) && !linked(&poses, 0, 2));
+    let (_, frames) = run_frames(&scene);
+    check_frames(&frames);
+    for f in &frames {
+        assert!(
+            linked(&f.poses, 0, 1) && linked(&f.poses, 1, 2),
+            "frame {}",
+            f.index
+        );
+    }
+    // Hanging, not fallen: the lower link stays within two ring diameters of the hook.
+    let z = frames.last().unwrap().poses[2].translation.vector.z;
+    let zb = frames.last().unwrap().poses[1].translation.vector.z;
+    eprintln!("hanging chain: b at z = {zb}, c at z = {z}");
+    assert!(z > 2.0 - 0.5 && z < 2.0, "z = {z}");
+    // Both links dropped until they hang: b's top on the hook, c's top on b's bottom.
+    assert!(zb < 2.0 - 0.05 && z < 1.86 - 0.05, "b at {zb}, c at {z}");
+}
