@@ -166,8 +166,8 @@ pub struct SceneRenderer {
     pub rendered: usize,
 }
 
-/// Tessellation bound of rendered meshes relative to the scene's largest body (a fraction of
-/// a pixel at the default camera distance).
+/// Tessellation bound of rendered meshes (a fraction of a pixel at the default camera
+/// distance for bodies of the built-in models' size; smaller bodies get 1% of their size).
 const RENDER_EPS: f64 = 2e-3;
 
 impl SceneRenderer {
@@ -204,9 +204,12 @@ impl SceneRenderer {
             if self.meshes[i].is_none() || deforming {
                 let profile = crate::runner::shape_profile(body, frame.time)
                     .map_err(|e| format!("body '{}': {e}", body.name))?;
+                // Small shapes (thin tori) get a finer bound: 1% of their profile's size.
+                let bb = profile.bounding_box();
+                let eps = RENDER_EPS.min(0.01 * (bb.max - bb.min).norm());
                 let mesh = revdist::tessellate::tessellate(
                     &profile,
-                    RENDER_EPS,
+                    eps,
                     revdist::tessellate::TessellateOptions::default(),
                 )
                 .map_err(|e| format!("body '{}': {e}", body.name))?;

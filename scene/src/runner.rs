@@ -9,10 +9,16 @@
 //! * With `within`, a measured pair whose bounding spheres are farther apart than that gets
 //!   the spheres' certified interval and no query (the broad phase).
 //!
+//! * Only a scene with a dynamic body steps the dynamics ([`crate::dynamics`]): mass
+//!   properties, broad phase and contact queries are computed for nothing else, and
+//!   static-static pairs are never looked at.
+//!
 //! [`Counters`] record every piece of work, so tests can check that nothing unrequested was
 //! done; [`FrameCost`] splits each frame's wall time by effect.
 
+use crate::dynamics::{StepReport, World};
 use crate::format::{Body, Effect, Scene, Shape};
+use crate::links::{core_circle, linking_number};
 use crate::motion::pose_at;
 use nalgebra::{Isometry3, Point3};
 use revdist::models::morph::Morph;
@@ -27,6 +33,24 @@ use std::time::Instant;
 pub enum RunError {
     #[error("body '{body}': {message}")]
     Body { body: String, message: String },
+    #[error("dynamics: {0}")]
+    Dynamics(String),
+}
+
+/// Pairs of [`Scene::links`] whose core circles are linked for the given poses.
+pub fn links_intact(scene: &Scene, poses: &[Isometry3<f64>]) -> usize {
+    scene
+        .links
+        .iter()
+        .filter(|&&(a, b)| {
+            let (Shape::Torus { major: ra, .. }, Shape::Torus { major: rb, .. }) =
+                (&scene.bodies[a].shape, &scene.bodies[b].shape)
+            else {
+                return false;
+            };
+            linking_number(&core_circle(&poses[a], *ra), &core_circle(&poses[b], *rb)).abs() == 1
+        })
+        .count()
 }
 
 /// Work done, per body and per measured pair.
@@ -45,6 +69,21 @@ pub struct Counters {
     pub reused: Vec<usize>,
     /// Frames the broad phase answered a pair from its bounding spheres.
     pub broad_phase_skips: Vec<usize>,
+    /// Dynamics: steps taken (0 unless some body is dynamic).
+    pub dynamics_steps: usize,
+    /// Dynamics: contact queries, static-dynamic and dynamic-dynamic.
+    pub dynamics_queries: [usize; 2],
+    /// Dynamics: pairs within reach by their bounding spheres but not queried because the
+    /// bound carried from their last query was enough.
+    pub dynamics_carried_skips: usize,
+    /// Dynamics: second queries at the narrowest width (pairs near the clearance).
+    pub dynamics_tight_queries: usize,
+    /// Dynamics: queries between two non-dynamic bodies (never made).
+    pub dynamics_static_static_queries: usize,
+    /// Dynamics: pairs looked at by the solver's broad phase.
+    pub dynamics_pair_checks: usize,
+    /// Dynamics: mass-property computations (one per dynamic body).
+    pub mass_computations: usize,
 }
 
 /// Wall time of one frame, by effect (seconds).
@@ -52,7 +91,20 @@ pub struct Counters {
 pub struct FrameCost {
     pub rebuild: f64,
     pub kinematics: f64,
+    pub dynamics: f64,
     pub measure: f64,
+}
+
+/// The dynamics in one frame (scenes with dynamic bodies).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicsFrame {
+    /// Kinetic and potential energy at the end of the frame.
+    pub kinetic: f64,
+    pub potential: f64,
+    /// What the frame's steps did (empty in frame 0).
+    pub report: StepReport,
+    /// Interlocked pairs of the scene ([`Scene::links`]) still linked (linking number +-1).
+    pub links_intact: usize,
 }
 
 /// How a pair's interval was obtained in a frame.
@@ -85,6 +137,8 @@ pub struct Frame {
     pub poses: Vec<Isometry3<f64>>,
     pub samples: Vec<PairSample>,
     pub cost: FrameCost,
+    /// `Some` when the scene has dynamic bodies.
+    pub dynamics: Option<DynamicsFrame>,
 }
 
 /// A body during the run.
@@ -99,6 +153,7 @@ pub fn shape_profile(body: &Body, time: f64) -> Result<Profile, String> {
     match &body.shape {
         Shape::Model(m) => revdist::models::model(m).map_err(|e| e.to_string()),
         Shape::ProfileFile(p) => revdist::profile_file::load_path(p).map_err(|e| e.to_string()),
+        Shape::Torus { major, minor } => torus_profile(*major, *minor),
         Shape::Morph { period } => {
             let t = (time / period).rem_euclid(1.0);
             Morph::shared()
@@ -106,6 +161,14 @@ pub fn shape_profile(body: &Body, time: f64) -> Result<Profile, String> {
                 .map_err(|e| e.to_string())
         }
     }
+}
+
+/// A torus profile: the full circle of radius `minor` about `(rho, z) = (major, 0)`, an exact
+/// rational quadratic NURBS from its lowest point, counter-clockwise (as the built-in `ring`).
+pub fn torus_profile(major: f64, minor: f64) -> Result<Profile, String> {
+    use revdist::models::primitives::{arc, deg};
+    let circle = arc([major, 0.0], minor, deg(-90.0), deg(270.0)).map_err(|e| e.to_string())?;
+    Profile::new("torus", vec![circle]).map_err(|e| e.to_string())
 }
 
 fn build(body: &Body, time: f64, eps: f64, pose: Isometry3<f64>) -> Result<Solid, RunError> {
@@ -143,6 +206,7 @@ pub fn run(
         queries: vec![0; pairs.len()],
         reused: vec![0; pairs.len()],
         broad_phase_skips: vec![0; pairs.len()],
+        ..Counters::default()
     };
     let opts = QueryOptions {
         tolerance: scene
@@ -163,6 +227,28 @@ pub fn run(
         });
         counters.initial_builds[i] += 1;
     }
+    // Dynamics only when a body is dynamic.
+    let mut world = if scene.has_dynamics() {
+        let solids: Vec<Solid> = live.iter().map(|l| l.solid.clone()).collect();
+        let eps_max = solids.iter().map(|s| s.tree.target_eps).fold(0.0, f64::max);
+        // The widest interval a query returns: the requested width, or what the leaves
+        // allow (2 (e_a + e_b) <= 4 eps), whichever is wider.
+        let width = opts.tolerance.width(eps_max, eps_max).max(4.0 * eps_max);
+        let mut w = World::new(scene, &solids, opts, width).map_err(RunError::Dynamics)?;
+        w.check_start(scene, &solids).map_err(RunError::Dynamics)?;
+        counters.mass_computations = w.mass_computations;
+        let start = links_intact(scene, &solids.iter().map(|s| s.pose).collect::<Vec<_>>());
+        if start != scene.links.len() {
+            return Err(RunError::Dynamics(format!(
+                "only {start} of the {} generated ring links are interlocked at the start",
+                scene.links.len()
+            ))
+            .into());
+        }
+        Some(w)
+    } else {
+        None
+    };
     let mut caches = vec![QueryCache::default(); pairs.len()];
     let mut last: Vec<Option<(usize, PairSample)>> = vec![None; pairs.len()];
     for index in 0..scene.frames() {
@@ -188,6 +274,45 @@ pub fn run(
                 }
             }
             cost.kinematics = clock.elapsed().as_secs_f64();
+        }
+        let mut dyn_frame = None;
+        if let Some(w) = world.as_mut() {
+            let clock = Instant::now();
+            let report = if index > 0 {
+                let mut solids: Vec<Solid> = live.iter().map(|l| l.solid.clone()).collect();
+                let r = w.advance(scene.time_step, &mut solids);
+                for (i, body) in scene.bodies.iter().enumerate() {
+                    if matches!(body.effect, Effect::Dynamic(_)) {
+                        live[i].solid.pose = solids[i].pose;
+                        live[i].changed = index;
+                    }
+                }
+                counters.dynamics_steps += r.steps;
+                counters.dynamics_queries[0] += r.queries[0];
+                counters.dynamics_queries[1] += r.queries[1];
+                counters.dynamics_static_static_queries += r.static_static_queries;
+                counters.dynamics_pair_checks += r.pair_checks;
+                counters.dynamics_tight_queries += r.tight_queries;
+                counters.dynamics_carried_skips += r.carried_skips;
+                if r.overlaps > 0 {
+                    return Err(RunError::Dynamics(format!(
+                        "frame {index}: a contact query reported overlap (a bug: the step bounds forbid it)"
+                    ))
+                    .into());
+                }
+                r
+            } else {
+                StepReport::new()
+            };
+            cost.dynamics = clock.elapsed().as_secs_f64();
+            let (kinetic, potential) = w.energy();
+            let poses: Vec<Isometry3<f64>> = live.iter().map(|l| l.solid.pose).collect();
+            dyn_frame = Some(DynamicsFrame {
+                kinetic,
+                potential,
+                report,
+                links_intact: links_intact(scene, &poses),
+            });
         }
         let clock = Instant::now();
         let mut samples = Vec::with_capacity(pairs.len());
@@ -249,6 +374,7 @@ pub fn run(
             poses: live.iter().map(|l| l.solid.pose).collect(),
             samples,
             cost,
+            dynamics: dyn_frame,
         })?;
     }
     Ok(counters)

@@ -134,7 +134,10 @@ fn bad_scenes_name_the_field() {
         (format!("duration = 1.0\ntime_step = 0.1\neps = nan\n{b}"), "eps"),
         (format!("{HEAD}{}", body("a", "teapot", "static", 0.0)), "body[0] ('a').model"),
         (format!("{HEAD}{}", body("a", "sphere", "wobbly", 0.0)), "unknown effect 'wobbly'"),
-        (format!("{HEAD}{}", body("a", "sphere", "dynamic", 0.0)), "body[0] ('a').effect"),
+        (
+            format!("{HEAD}[[body]]\nname = \"a\"\nmorph = {{ period = 1.0 }}\neffect = \"dynamic\"\n"),
+            "body[0] ('a').effect: a dynamic body must be rigid",
+        ),
         (format!("{HEAD}{b}{b}"), "'a' is used twice"),
         (format!("{HEAD}measure = [[\"a\", \"zz\"]]\n{b}"), "measure[0]: no body called 'zz'"),
         (
@@ -182,5 +185,5 @@ fn example_scenes_run() {
             n += 1;
         }
     }
-    assert!(n >= 4, "{n} example scenes");
+    assert!(n >= 5, "{n} example scenes");
 }

@@ -1,10 +1,15 @@
 //! `revdist-scene FILE [--out DIR]`: runs a scene (also reached as `revdist scene FILE`).
 //! Writes `DIR/<scene>.csv` (every measured pair in every frame) and `DIR/<scene>.md` (what
-//! was computed and what it cost). Errors are printed as `error: ...` with exit status 2.
+//! was computed and what it cost); a scene with dynamic bodies also gets
+//! `DIR/<scene>-dynamics.csv` (per frame: energy, contact queries, smallest certified gap,
+//! velocity scalings, links intact, cost) and a dynamics section in the summary. Errors are
+//! printed as `error: ...` with exit status 2.
 
 use clap::Parser;
 use revdist_scene::format::Scene;
-use revdist_scene::output::{csv_preamble, csv_rows, summary};
+use revdist_scene::output::{
+    csv_preamble, csv_rows, dynamics_csv_row, summary, DynamicsTally, DYNAMICS_CSV_HEADER,
+};
 use revdist_scene::render::SceneRenderer;
 use revdist_scene::runner::{run, FrameCost};
 use std::io::{BufWriter, Write};
@@ -62,8 +67,33 @@ fn go(args: Args) -> Result<(), Box<dyn std::error::Error>> {
     let mut renderer = SceneRenderer::new(&scene);
     let frames_dir = args.out.join(format!("{stem}-frames"));
     let mut render_s = Vec::new();
+    // Scenes with dynamic bodies also get DIR/<scene>-dynamics.csv, one row per frame.
+    let dyn_path = args.out.join(format!("{stem}-dynamics.csv"));
+    let mut dyn_csv = if scene.has_dynamics() {
+        let file = std::fs::File::create(&dyn_path)
+            .map_err(|e| format!("cannot write '{}': {e}", dyn_path.display()))?;
+        let mut w = BufWriter::new(file);
+        w.write_all(
+            csv_preamble(&shown, &scene)
+                .lines()
+                .filter(|l| l.starts_with('#'))
+                .map(|l| format!("{l}\n"))
+                .collect::<String>()
+                .as_bytes(),
+        )?;
+        writeln!(w, "{DYNAMICS_CSV_HEADER}")?;
+        Some(w)
+    } else {
+        None
+    };
+    let mut tally = DynamicsTally::new();
+    let wall = std::time::Instant::now();
     let counters = run(&scene, |frame| {
         csv_rows(&scene, frame, &mut csv)?;
+        if let Some(w) = dyn_csv.as_mut() {
+            dynamics_csv_row(frame, w)?;
+            tally.add(frame);
+        }
         costs.push(frame.cost);
         if let Some(r) = renderer.as_mut() {
             let clock = std::time::Instant::now();
@@ -76,7 +106,19 @@ fn go(args: Args) -> Result<(), Box<dyn std::error::Error>> {
         Ok(())
     })?;
     csv.flush()?;
+    let wall_s = wall.elapsed().as_secs_f64();
+    if let Some(w) = dyn_csv.as_mut() {
+        w.flush()?;
+    }
     let mut md = summary(&shown, &scene, &counters, &costs, min_lower);
+    if dyn_csv.is_some() {
+        md.push_str(&tally.markdown(&scene, &counters));
+        md.push_str(&format!(
+            "\nWall time of the run: {wall_s:.1} s ({:.1} ms per frame, rendering included); per-frame rows in `{}`.\n",
+            1e3 * wall_s / counters.frames.max(1) as f64,
+            dyn_path.display()
+        ));
+    }
     if let Some(r) = &renderer {
         let total: f64 = render_s.iter().sum();
         md.push_str(&format!(
