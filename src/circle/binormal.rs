@@ -468,6 +468,24 @@ fn point_binormals(
     out
 }
 
+/// The minimum distance between two full circles, without the closest pair: the same
+/// value as [`min_distance`], minus its angles and points (two `sin_cos` calls) on the fast
+/// path of circles in general position. For bounds that only need the number.
+pub fn min_distance_value(a: &Circle3, b: &Circle3) -> f64 {
+    if a.radius > 0.0 && b.radius > 0.0 && a.normal.cross(&b.normal).norm() > PARALLEL_SIN_TOL {
+        if let Some(m) = intersecting_axes_min(a, b) {
+            return m.distance;
+        }
+        let (x, y) = if b.radius <= a.radius { (a, b) } else { (b, a) };
+        if let Some(m) =
+            LocalPair::new(x, y).and_then(|lp| certified_min(&lp).map(|m| m.dist * lp.scale))
+        {
+            return m;
+        }
+    }
+    min_distance(a, b).distance
+}
+
 /// The minimum distance between two full circles, with one closest pair, the number of
 /// distinct closest pairs and a continuum flag.
 pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {

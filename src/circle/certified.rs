@@ -17,7 +17,7 @@
 //! Anything else (ties, flat or continuum minima, extreme radius ratios) is left to the
 //! polynomial solver by returning `None`.
 
-use super::descent::{descend, foot_angle, sample_sc};
+use super::descent::{descend_sc, sample_sc};
 use super::frame::LocalPair;
 use super::TIE_REL_TOL;
 use std::f64::consts::TAU;
@@ -129,9 +129,8 @@ enum Verdict {
 }
 
 /// Decides whether some theta has f(theta) < m, given the local minimum f(t) = m.
-fn certify(lp: &LocalPair, t: f64, m: f64) -> Verdict {
+fn certify(lp: &LocalPair, t: f64, (st, ct): (f64, f64), m: f64) -> Verdict {
     let q = trig_q(lp, m);
-    let (st, ct) = t.sin_cos();
     let (s2t, c2t) = (2.0 * st * ct, ct * ct - st * st);
     // Q in alpha = theta - t.
     let a1 = q.c1 * ct + q.s1 * st;
@@ -200,7 +199,7 @@ pub(crate) fn certified_min(lp: &LocalPair) -> Option<Certified> {
         0.0
     };
     let start = TAU * (k as f64 + offset) / N_SAMPLES as f64;
-    let (mut t, mut smp) = descend(lp, start);
+    let (mut t, mut smp, mut sc) = descend_sc(lp, start);
     for _ in 0..MAX_BASINS {
         let m = smp.f;
         // A proper local minimum: convex, and the remaining Newton decrease of h = f^2 / 2,
@@ -210,29 +209,34 @@ pub(crate) fn certified_min(lp: &LocalPair) -> Option<Certified> {
         if !convex || !far_beyond {
             return None;
         }
-        match certify(lp, t, m) {
+        match certify(lp, t, sc, m) {
             Verdict::Global => {
-                // Continua of closest pairs are reported by the general solver.
-                let qb = lp.pb(t);
+                // Continua of closest pairs are reported by the general solver. B(t) from
+                // the descent's (sin, cos); the foot on A is B(t)'s radial direction
+                // scaled to A's radius (no trigonometry).
+                let qb = lp.c + lp.rb * (sc.1 * lp.u + sc.0 * lp.v);
+                let rho = (qb.x * qb.x + qb.y * qb.y).sqrt();
+                if rho <= AXIS_CLEARANCE {
+                    return None;
+                }
                 let nb = lp.u.cross(&lp.v);
-                let phi = foot_angle(lp, t);
-                let rel = lp.pa(phi) - lp.c;
-                if qb.x.hypot(qb.y) <= AXIS_CLEARANCE || rel.cross(&nb).norm() <= AXIS_CLEARANCE {
+                let foot = nalgebra::Vector3::new(lp.ra * qb.x / rho, lp.ra * qb.y / rho, 0.0);
+                if (foot - lp.c).cross(&nb).norm() <= AXIS_CLEARANCE {
                     return None;
                 }
                 return Some(Certified {
-                    phi,
+                    phi: qb.y.atan2(qb.x),
                     theta: t,
                     dist: m,
                 });
             }
             Verdict::Deeper(th) => {
-                let (t2, s2) = descend(lp, th);
+                let (t2, s2, sc2) = descend_sc(lp, th);
                 let deeper = s2.f < m;
                 if !deeper {
                     return None;
                 }
-                (t, smp) = (t2, s2);
+                (t, smp, sc) = (t2, s2, sc2);
             }
             Verdict::Unsure => return None,
         }

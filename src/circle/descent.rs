@@ -64,14 +64,7 @@ fn rotate(sc: (f64, f64), x: f64) -> (f64, f64) {
     (sc.0 * cx + sc.1 * sx, sc.1 * cx - sc.0 * sx)
 }
 
-/// Evaluates f and the derivatives of f^2 / 2 at `theta`.
-#[inline]
-pub(crate) fn sample(lp: &LocalPair, theta: f64) -> Sample {
-    let (st, ct) = theta.sin_cos();
-    sample_sc(lp, st, ct)
-}
-
-/// [`sample`] from sin theta and cos theta. Plain square roots instead of `hypot`: the
+/// f and the derivatives of f^2 / 2 at the angle whose sine and cosine are `st`, `ct`. Plain square roots instead of `hypot`: the
 /// frame has unit scale, so squares neither overflow nor underflow for any distance above
 /// 1e-150 of the scale.
 #[inline]
@@ -114,6 +107,12 @@ pub(crate) fn foot_angle(lp: &LocalPair, theta: f64) -> f64 {
 /// bounded step downhill, each step halved until f does not increase. Returns the final
 /// theta and its sample.
 pub(crate) fn descend(lp: &LocalPair, theta0: f64) -> (f64, Sample) {
+    let (t, s, _) = descend_sc(lp, theta0);
+    (t, s)
+}
+
+/// [`descend`], also returning (sin theta, cos theta) of the final angle.
+pub(crate) fn descend_sc(lp: &LocalPair, theta0: f64) -> (f64, Sample, (f64, f64)) {
     let mut theta = theta0;
     // (sin theta, cos theta), carried along by rotations (`rotate`); the final sample is
     // re-evaluated from `theta` itself, so the returned pair is consistent to the last ulp.
@@ -176,9 +175,10 @@ pub(crate) fn descend(lp: &LocalPair, theta0: f64) -> (f64, Sample) {
         }
     }
     if moved {
-        cur = sample(lp, theta);
+        sc = theta.sin_cos();
+        cur = sample_sc(lp, sc.0, sc.1);
     }
-    (theta, cur)
+    (theta, cur, sc)
 }
 
 #[cfg(test)]

@@ -19,7 +19,7 @@ pub mod poly8;
 
 use nalgebra::{Isometry3, Point3, Unit, Vector3};
 
-pub use binormal::{binormals, min_distance};
+pub use binormal::{binormals, min_distance, min_distance_value};
 pub use point::{point_circle_distance, PointCircleDistance};
 
 /// Two directions are treated as parallel when the sine of their angle is below this:

@@ -1085,3 +1085,42 @@ fn intersecting_axes_match_the_oracle() {
     }
     assert_eq!(cases, 400);
 }
+
+/// `min_distance_value` is `min_distance` without the points: the same number, bit for
+/// bit, on random pairs (general, intersecting axes, parallel) and the degenerate catalogue.
+#[test]
+fn value_only_matches_min_distance() {
+    let mut rng = Rng(91);
+    let mut pairs = verify_regressions()
+        .into_iter()
+        .map(|(a, b, _)| (a, b))
+        .collect::<Vec<_>>();
+    for i in 0..500 {
+        let a = Circle3::new(
+            Point3::from(rng.unit() * rng.range(0.0, 1.0)),
+            rng.unit(),
+            rng.range(0.05, 1.2),
+        )
+        .unwrap();
+        let n = match i % 3 {
+            0 => rng.unit(),
+            1 => a.normal.into_inner(),
+            _ => (a.center.coords - Point3::origin().coords + rng.unit()).normalize(),
+        };
+        let b = Circle3::new(
+            Point3::from(rng.unit() * rng.range(0.0, 2.0)),
+            n,
+            rng.range(0.05, 1.2),
+        )
+        .unwrap();
+        pairs.push((a, b));
+    }
+    for (a, b) in pairs {
+        let full = min_distance(&a, &b).distance;
+        assert_eq!(
+            min_distance_value(&a, &b).to_bits(),
+            full.to_bits(),
+            "{a:?} {b:?}"
+        );
+    }
+}

@@ -21,7 +21,7 @@
 use super::binormal_kernel::parallel_circle;
 use super::patch::ProfileArc;
 use super::tree::Disk;
-use crate::circle::min_distance;
+use crate::circle::min_distance_value;
 use nalgebra::{Isometry3, Point3};
 
 /// Relative slack (of the configuration scale) subtracted from computed bounds: the circle
@@ -175,7 +175,7 @@ pub fn circle_circle_distance(ra: f64, za: f64, rb: f64, zb: f64, pos_ab: &Isome
     }
     let ca = parallel_circle(ra, za, &Isometry3::identity());
     let cb = parallel_circle(rb, zb, pos_ab);
-    min_distance(&ca, &cb).distance
+    min_distance_value(&ca, &cb)
 }
 
 /// Solid-torus lower bound (module doc).
