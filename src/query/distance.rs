@@ -55,6 +55,9 @@ pub struct QueryOptions {
     pub bound: BoundKind,
     /// Refine the witness points on the exact NURBS surfaces (needs the profiles).
     pub refine: bool,
+    /// Answer pairs of balls and solid tori in closed form ([`super::offset`]); `false`
+    /// runs the traversal for them too (to measure it, or to compare the two).
+    pub closed_form: bool,
 }
 
 impl Default for QueryOptions {
@@ -64,6 +67,7 @@ impl Default for QueryOptions {
             budget: Budget::default(),
             bound: BoundKind::default(),
             refine: false,
+            closed_form: true,
         }
     }
 }
@@ -215,7 +219,7 @@ pub fn distance_cached(
 fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
     let pos_ab = a.relative_pose(b);
     let slack = query_slack(&a.tree, &b.tree, &pos_ab);
-    if let (Some(oa), Some(ob)) = (&a.tree.offset, &b.tree.offset) {
+    if let (true, Some(oa), Some(ob)) = (opts.closed_form, &a.tree.offset, &b.tree.offset) {
         return offset_result(a, &offset_distance(oa, ob, &pos_ab, slack));
     }
     // The answer is widened by the rounding slack on both sides: the traversal stops that

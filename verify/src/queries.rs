@@ -283,6 +283,14 @@ const FROZEN: &[(&str, &str, [f64; 3], [f64; 4], f64, &str)] = &[
         0.0001,
         "coaxial overlap 4.7e-4 deep left undecided",
     ),
+    (
+        "bottle_ff",
+        "sphere",
+        [0.0, 0.0, 1.6992048654138485],
+        [-0.614822986985676, 0.0, 0.0, 0.7886651346889955],
+        0.001,
+        "coaxial crossing of a flat arc and the sphere: witness 1.1e-11 off the sphere (campaign seed 1201, case 1872)",
+    ),
 ];
 
 /// The frozen random profiles, by name.

@@ -3,7 +3,8 @@
 //!
 //! * the median and p90 query time of revdist at its default tolerance (`Tolerance::Trees`:
 //!   interval width <= eps_a + eps_b, the error a distance between meshes of Hausdorff error
-//!   eps has) and at tolerance 0 (run until nothing narrows);
+//!   eps has; balls and solid tori in closed form) and at tolerance 0 with the traversal
+//!   only (run until nothing narrows, no closed form);
 //! * the median query time of FCL `BVHModel<OBBRSS>` and `BVHModel<RSS>` on certified meshes
 //!   (`revdist::tessellate`, two-sided Hausdorff bound <= eps) in two layouts, Balanced
 //!   vertices with and without a cap on the meridian edge length (sliver fans on flat disks
@@ -292,8 +293,11 @@ fn bench_row(
 
     // Timing: every method once per pose, in a rotating order.
     let trees = QueryOptions::default();
+    // Tolerance 0 and no closed form: the traversal itself, also for the torus pair (whose
+    // default query is the closed form of `revdist::query::offset`).
     let exact = QueryOptions {
         tolerance: Tolerance::Absolute(0.0),
+        closed_form: false,
         ..QueryOptions::default()
     };
     let n_methods = 2 + 2 * layouts.len();
@@ -447,7 +451,8 @@ fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
     );
     s.push_str(
         "Single thread, one query at a time, methods interleaved per pose. revdist: default \
-         tolerance (certified interval width <= eps_a + eps_b) and tolerance 0. FCL: \
+         tolerance (certified interval width <= eps_a + eps_b; balls and solid tori in closed form) \
+         and tolerance 0 with the traversal only (no closed form). FCL: \
          `BVHModel<OBBRSS>` / `<RSS>` on certified meshes (two-sided Hausdorff bound <= eps), \
          the faster of two layouts per column (balanced; meridian edges capped at 1/64 of the \
          profile diagonal). Ratio = FCL OBBRSS median / revdist median (default tolerance). \
@@ -456,7 +461,7 @@ fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
          of the OBBRSS column). Violations: cases where revdist's interval misses FCL's \
          `d ± (h_a + h_b)`.\n\n",
     );
-    s.push_str("| pair | eps | triangles A+B | revdist median / p90 us | revdist tol 0 median us | FCL OBBRSS median us | FCL RSS median us | ratio OBBRSS / revdist | build revdist / mesh+OBBRSS ms | memory revdist / OBBRSS / RSS | max width / h_a+h_b | violations |\n");
+    s.push_str("| pair | eps | triangles A+B | revdist median / p90 us | revdist tol 0, traversal, median us | FCL OBBRSS median us | FCL RSS median us | ratio OBBRSS / revdist | build revdist / mesh+OBBRSS ms | memory revdist / OBBRSS / RSS | max width / h_a+h_b | violations |\n");
     s.push_str(
         "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
     );

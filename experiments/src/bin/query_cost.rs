@@ -2,7 +2,9 @@
 //! poses near contact (gaps log-uniform in [1e-3, 1e-1]), the median query time and the
 //! traversal counters.
 //!
-//! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]`.
+//! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]
+//! [--repeat K] [--closed-form on|off]` (`off`: balls and solid tori go through the traversal
+//! too).
 
 use experiments::poses::{log_uniform, pose_at_gap};
 use experiments::SplitMix;
@@ -44,6 +46,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut pairs = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill".to_string();
     let mut tol_mode = "trees".to_string();
     let mut repeat = 1usize;
+    let mut closed_form = true;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -52,6 +55,13 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             "--pairs" => pairs = args[i + 1].clone(),
             "--tolerance" => tol_mode = args[i + 1].clone(),
             "--repeat" => repeat = args[i + 1].parse()?,
+            "--closed-form" => {
+                closed_form = match args[i + 1].as_str() {
+                    "on" => true,
+                    "off" => false,
+                    o => return Err(format!("--closed-form on|off, got {o}").into()),
+                }
+            }
             o => return Err(format!("unknown argument {o}").into()),
         }
         i += 2;
@@ -88,6 +98,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             };
             let opts = QueryOptions {
                 tolerance,
+                closed_form,
                 ..QueryOptions::default()
             };
             let mut times = Vec::new();
