@@ -9,6 +9,7 @@
 //!
 //! | step | where | measured cost (per pair, 2-core EPYC) | what it gives |
 //! | --- | --- | --- | --- |
+//! | closed form | [`offset`] | one core distance, ~0.7 us per query | the whole answer when both solids are balls or solid tori (one circle per profile); no traversal |
 //! | node-pair bound | [`bounds`] | 0.1 us (spheres), ~1-3 us with the solid-torus circle minimum | a valid lower bound; prunes most pairs |
 //! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (one circle/circle minimum, or a circle/cone solve; closed-form shell and slab bounds first) | lower bound and a realised upper bound; settles the pair when they meet |
 //! | stage 1, split | [`leaf`], [`certify`] | up to 24 sub-piece torus bounds (~1-3 us each) | a positive lower bound for a pair whose tori overlap (long, flat or wide pieces), instead of "may intersect" |
@@ -30,12 +31,16 @@
 //! time is circle/circle minima behind node, stage-1 and sub-piece bounds (~1-3 us each,
 //! a few hundred per query). Before the stage-1 split and stage 1b, 3-9 leaf pairs per query
 //! went to the exact solve, 80% of them as "may intersect" only because a straight piece's
-//! or a wide arc's solid torus overlapped the other piece. A cheaper closed-form
+//! or a wide arc's solid torus overlapped the other piece. A closed-form threshold test of
+//! the circle/circle bounds against the pruning level (the certificate quartic at the
+//! level, no descent) was tried too: it proved the level in only 3-7% of the bound calls
+//! (the minima a query computes are the ones below its pruning level) and was dropped. A cheaper closed-form
 //! circle/circle lower bound in front of the solver was tried and was slower (it rarely
 //! prunes near contact, where the solver is needed anyway).
 //!
 //! # Layout
 //!
+//! * [`offset`] answers pairs of balls and solid tori in closed form before any traversal;
 //! * the traversal [`traverse`] only orders and prunes node pairs (Algorithm 2 with an
 //!   anytime budget); [`mod@distance`] adds solid semantics and frame coherence; [`batch`] runs
 //!   independent queries on all cores;
