@@ -17,7 +17,7 @@
 //! Anything else (ties, flat or continuum minima, extreme radius ratios) is left to the
 //! polynomial solver by returning `None`.
 
-use super::descent::{descend_sc, sample_sc};
+use super::descent::{descend_sc, f_squared_sc};
 use super::frame::LocalPair;
 use super::TIE_REL_TOL;
 use std::f64::consts::TAU;
@@ -180,9 +180,11 @@ fn certify(lp: &LocalPair, t: f64, (st, ct): (f64, f64), m: f64) -> Verdict {
 /// Meant for B the smaller circle (ra >= rb), so that ra >= m holds in general position.
 pub(crate) fn certified_min(lp: &LocalPair) -> Option<Certified> {
     // Start from the best of a few samples.
+    // f^2 at the samples (the vertex below is a start heuristic; the descent is
+    // safeguarded either way).
     let f: [f64; N_SAMPLES] = std::array::from_fn(|k| {
         let (st, ct) = SAMPLE_SIN_COS[k];
-        sample_sc(lp, st, ct).f
+        f_squared_sc(lp, st, ct)
     });
     let k = (0..N_SAMPLES).fold(0, |b, k| if f[k] < f[b] { k } else { b });
     // Vertex of the parabola through the best sample and its neighbours (a closer start
