@@ -164,6 +164,8 @@ pub struct SceneRenderer {
     meshes: Vec<Option<TriMesh>>,
     /// Frames rendered so far.
     pub rendered: usize,
+    /// The rendered frames (RGB), kept for the animated summary ([`SceneRenderer::write_gif`]).
+    frames: Vec<Vec<u8>>,
 }
 
 /// Tessellation bound of rendered meshes (a fraction of a pixel at the default camera
@@ -185,6 +187,7 @@ impl SceneRenderer {
             every: r.every,
             meshes: vec![None; scene.bodies.len()],
             rendered: 0,
+            frames: Vec::new(),
         })
     }
 
@@ -227,10 +230,42 @@ impl SceneRenderer {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create '{}': {e}", dir.display()))?;
         canvas.write_png(&dir.join(format!("{:05}.png", frame.index)))?;
+        self.frames.push(canvas.rgb);
         self.rendered += 1;
         Ok(())
     }
+
+    /// Writes the rendered frames as an animated GIF (the animated summary), each shown
+    /// for `frame_seconds` (the scene time between rendered frames: real-time playback),
+    /// looping. Colours are quantised per frame (NeuQuant, `gif`'s `from_rgb_speed`).
+    /// Nothing is written when no frame was rendered.
+    pub fn write_gif(
+        &self,
+        path: &Path,
+        frame_seconds: f64,
+    ) -> Result<(), Box<dyn std::error::Error>> {
+        if self.frames.is_empty() {
+            return Ok(());
+        }
+        let (w, h) = (self.camera.width as u16, self.camera.height as u16);
+        let file = std::fs::File::create(path)
+            .map_err(|e| format!("cannot create '{}': {e}", path.display()))?;
+        let mut enc = gif::Encoder::new(std::io::BufWriter::new(file), w, h, &[])?;
+        enc.set_repeat(gif::Repeat::Infinite)?;
+        // GIF delays are in hundredths of a second, at least 2 in common viewers.
+        let delay = (frame_seconds * 100.0).round().clamp(2.0, 65535.0) as u16;
+        for rgb in &self.frames {
+            let mut f = gif::Frame::from_rgb_speed(w, h, rgb, GIF_QUANTISE_SPEED);
+            f.delay = delay;
+            enc.write_frame(&f)?;
+        }
+        Ok(())
+    }
 }
+
+/// NeuQuant speed of the GIF colour quantiser (1 best .. 30 fastest): 10 keeps the shaded
+/// bodies' gradients at about 30 ms per 480x360 frame.
+const GIF_QUANTISE_SPEED: i32 = 10;
 
 #[cfg(test)]
 mod tests {
@@ -271,5 +306,68 @@ mod tests {
             PALETTE[1],
         );
         assert_eq!(behind.covered(), 0);
+    }
+}
+
+#[cfg(test)]
+mod gif_tests {
+    use super::*;
+
+    /// The animated summary decodes to the rendered frames: one GIF frame per rendered
+    /// frame, the camera's size, the requested delay, and colours within the quantiser's
+    /// error of the originals (a shaded sphere in front of a gradient-free background).
+    #[test]
+    fn gif_holds_every_rendered_frame() {
+        let profile = revdist::models::model("sphere").unwrap();
+        let mesh = revdist::tessellate::tessellate(
+            &profile,
+            1e-3,
+            revdist::tessellate::TessellateOptions::default(),
+        )
+        .unwrap()
+        .mesh;
+        let camera = Camera {
+            eye: Point3::new(5.0, 0.0, 0.75),
+            target: Point3::new(0.0, 0.0, 0.75),
+            fov_y: 0.6,
+            width: 120,
+            height: 90,
+        };
+        let mut r = SceneRenderer {
+            camera,
+            every: 1,
+            meshes: Vec::new(),
+            rendered: 0,
+            frames: Vec::new(),
+        };
+        for k in 0..3 {
+            let mut c = Canvas::new(120, 90);
+            let pose = Isometry3::translation(0.0, 0.3 * k as f64 - 0.3, 0.0);
+            c.draw(&r.camera, &mesh, &pose, PALETTE[k]);
+            r.frames.push(c.rgb);
+        }
+        let path =
+            std::env::temp_dir().join(format!("revdist-gif-test-{}.gif", std::process::id()));
+        r.write_gif(&path, 0.2).unwrap();
+        let mut opts = gif::DecodeOptions::new();
+        opts.set_color_output(gif::ColorOutput::RGBA);
+        let mut dec = opts.read_info(std::fs::File::open(&path).unwrap()).unwrap();
+        let mut n = 0;
+        while let Some(f) = dec.read_next_frame().unwrap() {
+            assert_eq!((f.width, f.height), (120, 90));
+            assert_eq!(f.delay, 20);
+            let orig = &r.frames[n];
+            let mut err = 0.0;
+            for (i, px) in f.buffer.chunks(4).enumerate() {
+                for c in 0..3 {
+                    err += (px[c] as f64 - orig[3 * i + c] as f64).abs();
+                }
+            }
+            let mean = err / (3.0 * 120.0 * 90.0);
+            assert!(mean < 4.0, "frame {n}: mean colour error {mean}");
+            n += 1;
+        }
+        assert_eq!(n, 3);
+        let _ = std::fs::remove_file(&path);
     }
 }

@@ -119,13 +119,18 @@ fn go(args: Args) -> Result<(), Box<dyn std::error::Error>> {
             dyn_path.display()
         ));
     }
-    if let Some(r) = &renderer {
+    if let (Some(r), Some(spec)) = (&renderer, &scene.render) {
         let total: f64 = render_s.iter().sum();
+        let gif_path = args.out.join(format!("{stem}.gif"));
+        let clock = std::time::Instant::now();
+        r.write_gif(&gif_path, scene.time_step * spec.every as f64)?;
         md.push_str(&format!(
-            "\nRendered {} frames into `{}` ({:.1} ms per rendered frame).\n",
+            "\nRendered {} frames into `{}` ({:.1} ms per rendered frame) and the animated summary `{}` ({:.0} ms).\n",
             r.rendered,
             frames_dir.display(),
-            1e3 * total / r.rendered.max(1) as f64
+            1e3 * total / r.rendered.max(1) as f64,
+            gif_path.display(),
+            1e3 * clock.elapsed().as_secs_f64()
         ));
     }
     let md_path = args.out.join(format!("{stem}.md"));
