@@ -340,10 +340,10 @@ mod gif_tests {
             rendered: 0,
             frames: Vec::new(),
         };
-        for k in 0..3 {
+        for (k, colour) in PALETTE.iter().take(3).enumerate() {
             let mut c = Canvas::new(120, 90);
             let pose = Isometry3::translation(0.0, 0.3 * k as f64 - 0.3, 0.0);
-            c.draw(&r.camera, &mesh, &pose, PALETTE[k]);
+            c.draw(&r.camera, &mesh, &pose, *colour);
             r.frames.push(c.rgb);
         }
         let path =
