@@ -100,10 +100,10 @@
 //! next, up to rounding. The runner reports the largest increase it measured.
 //!
 //! Measured on `experiments/scenes/ring_mesh.toml` (65 rings, 4000 steps of 1 ms): no step
-//! increased the energy (largest change 0; the guard acted in 3 steps), energy 0.3262 at
-//! the start and 0.2661 at the end, smallest certified lower bound of a contact query
-//! 6.1e-4 (the clearance is 4e-4), no body stopped, 80 of 80 links intact, 125 queries per
-//! step. Without
+//! increased the energy beyond rounding (largest change 5.6e-17, 2e-16 of the total; the
+//! guard acted in 2 steps), energy 0.3262 at the start and 0.2660 at the end, smallest
+//! certified lower bound of a contact query 6.4e-4 (the clearance is 4e-4), no body stopped,
+//! 80 of 80 links intact, 125 queries per step (`figures/scenes/ring_mesh.md`). Without
 //! the exact rotation (fixed-axis update) a ring spinning at 40 rad/s gained 0.2% of its
 //! rotational energy per step, which the guard would then have had to remove.
 
