@@ -18,7 +18,7 @@ const GAP_ACCEPT_REL: f64 = 0.05;
 
 /// A pose of `b` (relative to `a`, which sits at the identity) with a random rotation and a
 /// random approach direction, slid along that direction until the certified distance is
-/// within [`GAP_ACCEPT_REL`] of `gap` (the query's own value is used to place it; timing
+/// within `GAP_ACCEPT_REL` of `gap` (the query's own value is used to place it; timing
 /// does not depend on how exactly the gap is hit). `centres` are the mid-height axis points
 /// `z` of both solids; `reach` bounds the sum of both solids' radii about them.
 pub fn pose_at_gap(
@@ -36,7 +36,7 @@ pub fn pose_at_gap(
 
 /// The pose of `b` with rotation `rot` whose axis point `centres.1` lies on the ray from
 /// `a`'s axis point `centres.0` along the unit vector `dir`, slid along the ray until the
-/// certified distance is within [`GAP_ACCEPT_REL`] of `gap`; `None` when no slide reaches it.
+/// certified distance is within `GAP_ACCEPT_REL` of `gap`; `None` when no slide reaches it.
 pub fn slide_to_gap(
     a: &Solid,
     b: &Solid,

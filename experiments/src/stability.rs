@@ -28,9 +28,9 @@
 //!
 //! # Solid level
 //!
-//! Certified queries ([`revdist::query::distance`], default tolerance `eps_a + eps_b`) on
+//! Certified queries ([`fn@revdist::query::distance`], default tolerance `eps_a + eps_b`) on
 //! pairs whose distance has a closed form, derived beside each constructor in
-//! [`solid_case`]; the closed form is evaluated in 256-bit MPFR from the exact values of the
+//! `solid_case`; the closed form is evaluated in 256-bit MPFR from the exact values of the
 //! `f64` data (rug), so the cancellation in e.g. `|c_b - c_a| - 1.5` at a gap of 1e-16 costs
 //! nothing. The families: coaxial stacks (gap `delta` along a common axis), touching pairs
 //! moved `delta` apart along a random direction, nested pairs whose inner surface is `delta`

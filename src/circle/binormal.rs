@@ -1,6 +1,6 @@
 //! All binormals and the minimum distance of two circles (paper section 3.2, Appendix A).
 //!
-//! Binormals: express B in A's unit-size frame ([`super::frame`]); closed form for points
+//! Binormals: express B in A's unit-size frame (`frame`); closed form for points
 //! and parallel planes ([`super::parallel`]); otherwise the degree-8 half-angle polynomial on
 //! the two half circles of B ([`super::poly8`]), restricted to the requested angle range,
 //! solved with [`crate::poly::solve::root_clusters_into`] (keeps double roots: when A's
@@ -10,8 +10,8 @@
 //! vanishes identically the roles are swapped; if both vanish the distance is constant along
 //! the circles (Villarceau-type continuum).
 //!
-//! Minimum distance: general pairs take the certified fast path of [`super::certified`];
-//! the rest descend the closed-form distance along B ([`super::descent`]) from every root
+//! Minimum distance: general pairs take the certified fast path of `certified`;
+//! the rest descend the closed-form distance along B (`descent`) from every root
 //! and root cluster of the polynomial, with each circle parametrised in turn. Everything
 //! runs on stack arrays.
 

@@ -12,7 +12,7 @@
 //! **Construction.** The exact profile is parameterised by arc length and cut at its creases:
 //! the joins between source pieces whose tangent turns by more than [`CREASE_ANGLE`](super::fit::CREASE_ANGLE)
 //! (corners, rims). Each run between two creases (or a crease and an axis end) is fitted by
-//! least squares with the shared fitter of [`super::fit`]:
+//! least squares with the shared fitter of `models::fit`:
 //! - the piece interpolates the source at both run ends, so consecutive pieces meet exactly
 //!   at the crease points and the profile's ends lie exactly on the axis (rho = 0);
 //! - at both run ends the second (second-to-last) control point lies on the source's

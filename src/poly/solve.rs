@@ -20,7 +20,7 @@ const STACK_CAP: usize = 64;
 /// Smallest interval width bisection will produce (below this, doubles are adjacent).
 const MIN_WIDTH: f64 = 1e-15;
 
-/// Rows of the binomial table used by [`horner_bernstein`] (degrees below this avoid a
+/// Rows of the binomial table used by `horner_bernstein` (degrees below this avoid a
 /// division per term).
 pub const BINOM_ROWS: usize = 17;
 

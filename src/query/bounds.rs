@@ -127,7 +127,7 @@ fn height_range(piece: &ProfileArc, pos_ab: &Isometry3<f64>) -> (f64, f64) {
 
 /// Slab lower bound of two revolved profile pieces: a piece's surface lies between the
 /// planes `z = z_min` and `z = z_max` of its own frame (its meridian points' heights), and
-/// the other surface's heights in that frame lie in [`height_range`]; when the ranges are
+/// the other surface's heights in that frame lie in `height_range`; when the ranges are
 /// disjoint, their gap bounds the distance (each point pair is at least its height
 /// difference apart). Tried both ways. Exact for a flat disk or annulus (a horizontal
 /// segment, e.g. a cup's bottom or a table's top) facing a cone whose nearest boundary

@@ -13,7 +13,7 @@
 //! With the half-angle substitution `theta = theta0 + 2 atan(w)`, `w = 2 s - 1` on each half
 //! circle (`theta0 = 0, pi`), `cos theta` and `sin theta` are quadratics over `1 + w^2`, so both
 //! become polynomials in `s` of degree 8 and 4, built directly in Bernstein form and solved
-//! by [`crate::poly::solve`], which keeps roots of even multiplicity (a cylinder's critical
+//! by [`mod@crate::poly::solve`], which keeps roots of even multiplicity (a cylinder's critical
 //! angles are double roots after squaring). Squaring can add angles of the other branch;
 //! every caller measures each angle exactly, so extra angles are harmless, and none is lost.
 

@@ -19,7 +19,7 @@
 //! `e_a + e_b` decides it for all of B (same argument as above, with the outside case
 //! symmetric).
 //!
-//! Every margin comparison adds the query's rounding slack (see [`super::distance`]).
+//! Every margin comparison adds the query's rounding slack (see [`mod@super::distance`]).
 
 use super::containment::{point_in_profile, point_in_solid};
 use super::patch::{e_rho, lift};

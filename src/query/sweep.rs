@@ -169,7 +169,7 @@ pub fn level_angles(c: &ParamCircle, f: &RadialField, level: f64, out: &mut Vec<
 
 /// Appends the angles where `F = level` along the circle, given every critical angle of
 /// `F` (`critical`, sorted in `[0, 2 pi)`): `F` is monotone between consecutive critical
-/// angles, so each gap holds at most one crossing, found by [`bisect`] when the ends differ
+/// angles, so each gap holds at most one crossing, found by `bisect` when the ends differ
 /// in sign. Touching without crossing happens at a critical angle, which the caller
 /// already measures.
 pub fn level_crossings(

@@ -16,7 +16,7 @@ pub const NEAR_GAPS: (f64, f64) = (1e-4, 1e-1);
 /// past contact.
 pub const OVERLAP_DEPTHS: (f64, f64) = (1e-3, 0.5);
 /// Conservative-advancement steps when sliding B towards A (each step keeps the gap above the
-/// target, see [`approach`]); the final pose is accepted whatever its gap, which is recorded.
+/// target, see `approach`); the final pose is accepted whatever its gap, which is recorded.
 pub const ADVANCE_STEPS: usize = 30;
 /// Advancement stops when the gap is within this factor of the target.
 pub const ADVANCE_ACCEPT: f64 = 1.5;

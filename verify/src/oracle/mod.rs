@@ -2,7 +2,7 @@
 //!
 //! It shares no code with `revdist::query`: it reads a profile's raw NURBS data and a solid's
 //! pose, and does its own evaluation ([`profile_eval`]), planar distance and point-in-region
-//! ([`planar`]), surface distance with lower and upper estimates ([`surface_distance`]), and
+//! ([`planar`]), surface distance with lower and upper estimates ([`mod@surface_distance`]), and
 //! checks a query's answer against it ([`checks`]).
 
 pub mod checks;
