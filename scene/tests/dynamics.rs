@@ -2,15 +2,14 @@
 //! an interlocked chain, the counters (no dynamics work unless asked for, static-static pairs
 //! never queried) and the errors of bad dynamic fields.
 
-use revdist_scene::format::{Scene, SceneError};
+use revdist_scene::format::Scene;
 use revdist_scene::mass::mass_properties;
 use revdist_scene::runner::{run, torus_profile, Counters, Frame};
 use std::f64::consts::PI;
 use std::path::Path;
 
-fn parse(text: &str) -> Result<Scene, SceneError> {
-    Scene::parse(text, Path::new("."))
-}
+mod common;
+use common::{assert_errors_mention, parse};
 
 /// Runs a scene, keeping every frame.
 fn run_frames(scene: &Scene) -> (Counters, Vec<Frame>) {
@@ -204,13 +203,6 @@ fn static_pairs_are_never_queried() {
     assert_eq!(c.mass_computations, 2);
 }
 
-fn error_of(text: &str) -> String {
-    match parse(text) {
-        Ok(_) => panic!("accepted: {text}"),
-        Err(e) => e.to_string(),
-    }
-}
-
 /// Bad dynamic fields: each error names the field and the problem.
 #[test]
 fn bad_dynamic_fields_name_the_field() {
@@ -266,13 +258,7 @@ fn bad_dynamic_fields_name_the_field() {
             "ring_mesh[0] ('m').center: expected 3 numbers, got 2",
         ),
     ];
-    for (text, expected) in cases {
-        let e = error_of(&text);
-        assert!(
-            e.contains(expected),
-            "error {e:?} should mention {expected:?}"
-        );
-    }
+    assert_errors_mention(&cases);
 }
 
 /// A contact skin too thin for the queries' certified width, or bodies starting inside the

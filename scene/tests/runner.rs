@@ -1,13 +1,12 @@
 //! The runner computes only what a scene asks for: counters checked on small scenes, and
 //! every bad field of a scene file named in its error.
 
-use revdist_scene::format::{Scene, SceneError};
+use revdist_scene::format::Scene;
 use revdist_scene::runner::{run, Counters, Source};
 use std::path::Path;
 
-fn parse(text: &str) -> Result<Scene, SceneError> {
-    Scene::parse(text, Path::new("."))
-}
+mod common;
+use common::{assert_errors_mention, parse};
 
 fn run_counting(scene: &Scene) -> (Counters, Vec<(usize, Source, f64, f64)>) {
     let mut seen = Vec::new();
@@ -118,13 +117,6 @@ fn broad_phase_skips_far_pairs() {
     }
 }
 
-fn error_of(text: &str) -> String {
-    match parse(text) {
-        Ok(_) => panic!("accepted: {text}"),
-        Err(e) => e.to_string(),
-    }
-}
-
 /// Bad scene files: each error names the field and the problem.
 #[test]
 fn bad_scenes_name_the_field() {
@@ -159,13 +151,7 @@ fn bad_scenes_name_the_field() {
         (format!("{HEAD}colour = \"red\"\n{b}"), "unknown field `colour`"),
         (HEAD.to_string(), "missing field `body`"),
     ];
-    for (text, expected) in cases {
-        let e = error_of(&text);
-        assert!(
-            e.contains(expected),
-            "error {e:?} should mention {expected:?}"
-        );
-    }
+    assert_errors_mention(&cases);
 }
 
 /// Every example scene parses, plans and runs its first frames.
