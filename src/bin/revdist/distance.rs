@@ -98,6 +98,8 @@ struct Output {
     leaf_tests: usize,
     subdivided_pairs: usize,
     budget_exhausted: bool,
+    /// Answered by the closed form for two balls or solid tori (no traversal).
+    closed_form: bool,
 }
 
 impl From<&Distance> for Output {
@@ -114,6 +116,7 @@ impl From<&Distance> for Output {
             leaf_tests: d.stats.leaf_tests,
             subdivided_pairs: d.stats.subdivided_pairs,
             budget_exhausted: d.stats.budget_exhausted,
+            closed_form: d.stats.closed_forms > 0,
         }
     }
 }
@@ -231,6 +234,10 @@ pub fn run(args: Args) -> CmdResult {
             d.point_b.x, d.point_b.y, d.point_b.z
         );
         println!("overlap   {}", d.overlap);
+        if d.stats.closed_forms > 0 {
+            println!("stats     closed form (two balls or solid tori: core distance minus radii)");
+            return Ok(());
+        }
         println!(
             "stats     {} node pairs, {} leaf pairs bounded, {} solved exactly ({} patch pairs){}",
             d.stats.node_pairs,
