@@ -473,17 +473,55 @@ fn point_binormals(
 /// path of circles in general position. For bounds that only need the number.
 pub fn min_distance_value(a: &Circle3, b: &Circle3) -> f64 {
     if a.radius > 0.0 && b.radius > 0.0 && a.normal.cross(&b.normal).norm() > PARALLEL_SIN_TOL {
-        if let Some(m) = intersecting_axes_min(a, b) {
-            return m.distance;
-        }
-        let (x, y) = if b.radius <= a.radius { (a, b) } else { (b, a) };
-        if let Some(m) =
-            LocalPair::new(x, y).and_then(|lp| certified_min(&lp).map(|m| m.dist * lp.scale))
-        {
-            return m;
+        match general_fast(a, b) {
+            Some(FastMin::Closed(m)) => return m.distance,
+            Some(FastMin::Certified { distance, .. }) => return distance,
+            None => {
+                if let Some(lp) = LocalPair::new(a, b) {
+                    return searched_min(a, b, &lp).distance;
+                }
+            }
         }
     }
     min_distance(a, b).distance
+}
+
+/// What the fast paths of circles in general position found ([`general_fast`]).
+enum FastMin {
+    /// The closed form for meeting axes, with its closest pair.
+    Closed(MinDistance),
+    /// The certified local minimum: the angles of the closest pair and the distance.
+    Certified {
+        angle_a: f64,
+        angle_b: f64,
+        distance: f64,
+    },
+}
+
+/// The fast paths for circles in general position (both radii positive, planes not
+/// parallel): the closed form for meeting axes, else a local minimum certified global by a
+/// quartic; `None` when neither decides.
+fn general_fast(a: &Circle3, b: &Circle3) -> Option<FastMin> {
+    if let Some(m) = intersecting_axes_min(a, b) {
+        return Some(FastMin::Closed(m));
+    }
+    let (x, y, param_b) = if b.radius <= a.radius {
+        (a, b, true)
+    } else {
+        (b, a, false)
+    };
+    let lpx = LocalPair::new(x, y)?;
+    let m = certified_min(&lpx)?;
+    let (angle_a, angle_b) = if param_b {
+        (m.phi, m.theta)
+    } else {
+        (m.theta, m.phi)
+    };
+    Some(FastMin::Certified {
+        angle_a,
+        angle_b,
+        distance: m.dist * lpx.scale,
+    })
 }
 
 /// The minimum distance between two full circles, with one closest pair, the number of
@@ -530,30 +568,29 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
             multiplicity: sol.multiplicity,
         };
     }
-    if let Some(m) = intersecting_axes_min(a, b) {
-        return m;
-    }
-    // General position: a local minimum certified global by a quartic (fast path).
-    let (x, y, param_b) = if b.radius <= a.radius {
-        (a, b, true)
-    } else {
-        (b, a, false)
-    };
-    if let Some(m) = LocalPair::new(x, y)
-        .and_then(|lpx| certified_min(&lpx).map(|m| (m.phi, m.theta, m.dist * lpx.scale)))
-    {
-        let (phi, theta, dist) = m;
-        let (angle_a, angle_b) = if param_b { (phi, theta) } else { (theta, phi) };
-        return MinDistance {
-            distance: dist,
+    match general_fast(a, b) {
+        Some(FastMin::Closed(m)) => m,
+        Some(FastMin::Certified {
+            angle_a,
+            angle_b,
+            distance,
+        }) => MinDistance {
+            distance,
             angle_a,
             angle_b,
             point_a: a.point_at(angle_a),
             point_b: b.point_at(angle_b),
             closest_pairs: 1,
             multiplicity: Multiplicity::Finite,
-        };
+        },
+        None => searched_min(a, b, &lp),
     }
+}
+
+/// The minimum for circles in general position that the fast paths could not decide: the
+/// roots of the degree-8 polynomial with each circle parametrised in turn, or sampling when
+/// both polynomials vanish identically. `lp` is B in A's frame.
+fn searched_min(a: &Circle3, b: &Circle3, lp: &LocalPair) -> MinDistance {
     // Search with each circle parametrised in turn and keep the smaller distance. Either
     // search alone can be ill-conditioned (the parametrised circle much smaller or much
     // larger than the other, nearly touching circles); every candidate is a true distance
@@ -591,7 +628,7 @@ pub fn min_distance(a: &Circle3, b: &Circle3) -> MinDistance {
     }
     // Both polynomials vanish identically: the distance from B(theta) to A is constant along
     // B, or piecewise so; minimise it by sampling and polishing.
-    let m = sampled_min(&lp);
+    let m = sampled_min(lp);
     MinDistance {
         distance: m.2 * lp.scale,
         angle_a: m.0,

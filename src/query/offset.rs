@@ -20,7 +20,7 @@ use super::binormal_kernel::parallel_circle;
 use super::patch::ProfileArc;
 use crate::circle::min_distance;
 use crate::profile::ProfileKind;
-use nalgebra::{Isometry3, Point2, Point3, Vector3};
+use nalgebra::{Isometry3, Point3, Vector3};
 use std::f64::consts::{PI, TAU};
 
 /// Largest detection error accepted, relative to `1 + |centre| + r`: arcs fitted to an exact
@@ -216,18 +216,10 @@ pub fn offset_distance(
     }
 }
 
-/// The profile-plane point of a core (for tests and drawings).
-pub fn core_point(core: &Core) -> Point2<f64> {
-    match *core {
-        Core::Point { z } => Point2::new(0.0, z),
-        Core::Circle { rho, z } => Point2::new(rho, z),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Translation3, UnitQuaternion};
+    use nalgebra::{Point2, Translation3, UnitQuaternion};
 
     fn arc(c: [f64; 2], r: f64, phi0: f64, sweep: f64) -> ProfileArc {
         ProfileArc::Arc {
