@@ -18,7 +18,7 @@
 
 use super::binormal_kernel::parallel_circle;
 use super::patch::ProfileArc;
-use crate::circle::min_distance;
+use crate::circle::{min_distance, point_circle_distance};
 use crate::profile::ProfileKind;
 use nalgebra::{Isometry3, Point3, Vector3};
 use std::f64::consts::{PI, TAU};
@@ -121,33 +121,21 @@ pub fn detect(chain: &[ProfileArc], kind: ProfileKind, tree_eps: f64) -> Option<
 
 /// Closest points of two cores (A's frame; B placed by `pos_ab`) and their distance.
 fn core_distance(a: &Core, b: &Core, pos_ab: &Isometry3<f64>) -> (f64, Point3<f64>, Point3<f64>) {
-    // The point of circle (rho, z) about A's axis nearest to p (any point when p is on the
-    // axis: all are equally near).
-    let foot = |p: &Point3<f64>, rho: f64, z: f64| {
-        let r = p.x.hypot(p.y);
-        let (cx, cy) = if r > 0.0 {
-            (p.x / r, p.y / r)
-        } else {
-            (1.0, 0.0)
-        };
-        Point3::new(rho * cx, rho * cy, z)
-    };
+    let on_axis = |z: f64, pos: &Isometry3<f64>| pos * Point3::new(0.0, 0.0, z);
     match (*a, *b) {
         (Core::Point { z: za }, Core::Point { z: zb }) => {
-            let pa = Point3::new(0.0, 0.0, za);
-            let pb = pos_ab * Point3::new(0.0, 0.0, zb);
+            let (pa, pb) = (on_axis(za, &Isometry3::identity()), on_axis(zb, pos_ab));
             ((pb - pa).norm(), pa, pb)
         }
         (Core::Circle { rho, z }, Core::Point { z: zb }) => {
-            let pb = pos_ab * Point3::new(0.0, 0.0, zb);
-            let pa = foot(&pb, rho, z);
-            ((pb - pa).norm(), pa, pb)
+            let pb = on_axis(zb, pos_ab);
+            let m = point_circle_distance(&pb, &parallel_circle(rho, z, &Isometry3::identity()));
+            (m.distance, m.closest, pb)
         }
         (Core::Point { z: za }, Core::Circle { rho, z }) => {
-            let pa_in_b = pos_ab.inverse_transform_point(&Point3::new(0.0, 0.0, za));
-            let pb = pos_ab * foot(&pa_in_b, rho, z);
-            let pa = Point3::new(0.0, 0.0, za);
-            ((pb - pa).norm(), pa, pb)
+            let pa = on_axis(za, &Isometry3::identity());
+            let m = point_circle_distance(&pa, &parallel_circle(rho, z, pos_ab));
+            (m.distance, pa, m.closest)
         }
         (Core::Circle { rho: ra, z: za }, Core::Circle { rho: rb, z: zb }) => {
             let ca = parallel_circle(ra, za, &Isometry3::identity());
