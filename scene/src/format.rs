@@ -479,6 +479,26 @@ impl Scene {
     }
 }
 
+/// A count given or defaulted, within `range`; `unit` follows the range in the message
+/// (e.g. `" pixels"`).
+fn count_in(
+    field: &str,
+    v: Option<usize>,
+    default: usize,
+    range: std::ops::RangeInclusive<usize>,
+    unit: &str,
+) -> Result<usize, SceneError> {
+    let n = v.unwrap_or(default);
+    if range.contains(&n) {
+        Ok(n)
+    } else {
+        Err(field_error(
+            field,
+            format!("must be {}..{}{unit}, got {n}", range.start(), range.end()),
+        ))
+    }
+}
+
 fn positive(field: &str, v: f64) -> Result<f64, SceneError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
@@ -1055,12 +1075,8 @@ fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneError> {
             if (eye - target).norm() == 0.0 {
                 return Err(field_error("render.target", "must differ from render.eye"));
             }
-            let size = |field: &str, v: Option<usize>, default: usize| match v.unwrap_or(default) {
-                n @ 16..=4096 => Ok(n),
-                n => Err(field_error(
-                    field,
-                    format!("must be 16..4096 pixels, got {n}"),
-                )),
+            let size = |field: &str, v: Option<usize>, default: usize| {
+                count_in(field, v, default, 16..=4096, " pixels")
             };
             let fov = r.fov.unwrap_or(0.7);
             if !(fov > 0.0 && fov < 3.0) {
@@ -1109,16 +1125,13 @@ fn check_dynamics(
         Some(g) => vec3("gravity", g)?,
         None => d.gravity,
     };
-    let substeps = match substeps {
-        None => d.substeps,
-        Some(n @ 1..=10_000) => n,
-        Some(n) => {
-            return Err(field_error(
-                "substeps",
-                format!("must be 1..10000 steps per frame, got {n}"),
-            ))
-        }
-    };
+    let substeps = count_in(
+        "substeps",
+        substeps,
+        d.substeps,
+        1..=10_000,
+        " steps per frame",
+    )?;
     let contact_skin = match contact_skin {
         None => None,
         Some(s) => Some(positive("contact_skin", s)?),
@@ -1133,16 +1146,13 @@ fn check_dynamics(
             ))
         }
     };
-    let solver_iterations = match solver_iterations {
-        None => d.solver_iterations,
-        Some(n @ 1..=1000) => n,
-        Some(n) => {
-            return Err(field_error(
-                "solver_iterations",
-                format!("must be 1..1000, got {n}"),
-            ))
-        }
-    };
+    let solver_iterations = count_in(
+        "solver_iterations",
+        solver_iterations,
+        d.solver_iterations,
+        1..=1000,
+        "",
+    )?;
     if bodies
         .iter()
         .any(|b| matches!(b.effect, Effect::Dynamic(_)))
