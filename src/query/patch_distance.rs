@@ -340,35 +340,32 @@ const MERIDIAN_DEDUP: f64 = 1e-12;
 /// Samples along a meridian for the crossing scan.
 const MERIDIAN_SAMPLES: usize = 32;
 
-/// Implicit function of the extended surface of `o` at `x` (o's frame): zero exactly on
-/// the revolved full circle (or line) of the piece, both mirror halves.
-fn implicit(o: &Patch, x: &Point3<f64>) -> f64 {
+/// Implicit functions of the two mirror halves of the extended surface of `o` at `x`
+/// (o's frame): each is zero exactly on one half of the revolved full circle (or line) of
+/// the piece, so that their union is the extended surface. The halves are kept apart: their
+/// product, zero on the same set, becomes a square with no sign change when the halves
+/// nearly coincide (an arc centred near the axis, a segment within rounding of flat), and a
+/// crossing scan on it missed a cone tip poking through a flat disk (campaign seed 1206).
+fn implicit_halves(o: &Patch, x: &Point3<f64>) -> [f64; 2] {
     let rho = x.x.hypot(x.y);
     match o.core() {
         Core::Circle {
             r_major,
             z,
             r_minor,
-        } => {
-            let d1 = (rho - r_major).hypot(x.z - z) - r_minor;
-            if r_major == 0.0 {
-                return d1; // both halves coincide (sphere)
-            }
-            d1 * ((rho + r_major).hypot(x.z - z) - r_minor)
-        }
-        Core::Line { n, c } => {
-            let h1 = n.x * rho + n.y * x.z - c;
-            if n.x == 0.0 {
-                return h1; // flat annulus: both halves coincide
-            }
-            h1 * (-n.x * rho + n.y * x.z - c)
-        }
+        } => [
+            (rho - r_major).hypot(x.z - z) - r_minor,
+            (rho + r_major).hypot(x.z - z) - r_minor,
+        ],
+        Core::Line { n, c } => [n.x * rho + n.y * x.z - c, -n.x * rho + n.y * x.z - c],
     }
 }
 
-/// Points of `g`'s meridians (at angles `thetas`, frame G) where the implicit function of
-/// `o` changes sign, each emitted with its closest point on `o` (O's frame): a crossing of
-/// the two patches when that distance is zero. `pos_og` places G in O.
+/// Points of `g`'s meridians (at angles `thetas`, frame G) where an implicit function of
+/// `o`'s halves changes sign ([`implicit_halves`]), each emitted with its closest point on
+/// `o` (O's frame): a crossing of the two patches when that distance is zero. Every
+/// emitted pair is two real points of the patches, so extra candidates never undercut the
+/// distance. `pos_og` places G in O.
 fn meridian_crossings(
     g: &Patch,
     o: &Patch,
@@ -380,15 +377,19 @@ fn meridian_crossings(
     for &th in thetas {
         let e = e_rho(th);
         let at = |s: f64| pos_og * lift(g.arc.point_at(s), &e);
-        let mut prev = implicit(o, &at(0.0));
+        let mut prev = implicit_halves(o, &at(0.0));
         for i in 1..=n {
             let (s0, s1) = ((i - 1) as f64 / n as f64, i as f64 / n as f64);
-            let cur = implicit(o, &at(s1));
-            if prev == 0.0 || prev.signum() != cur.signum() {
-                let (mut lo, mut hi, mut flo) = (s0, s1, prev);
+            let cur = implicit_halves(o, &at(s1));
+            for half in 0..2 {
+                if prev[half] != 0.0 && prev[half].signum() == cur[half].signum() {
+                    continue;
+                }
+                let f = |s: f64| implicit_halves(o, &at(s))[half];
+                let (mut lo, mut hi, mut flo) = (s0, s1, prev[half]);
                 for _ in 0..60 {
                     let mid = 0.5 * (lo + hi);
-                    let fm = implicit(o, &at(mid));
+                    let fm = f(mid);
                     if fm == 0.0 {
                         lo = mid;
                         hi = mid;

@@ -291,6 +291,14 @@ const FROZEN: &[(&str, &str, [f64; 3], [f64; 4], f64, &str)] = &[
         0.001,
         "coaxial crossing of a flat arc and the sphere: witness 1.1e-11 off the sphere (campaign seed 1201, case 1872)",
     ),
+    (
+        "rand-s1206-27",
+        "morph@0",
+        [-0.26577150075868694, -0.3096366496004632, 0.6947616256937329],
+        [0.8108565397064, 0.0, 0.0, 0.58524496752673],
+        0.001,
+        "cone tip through M_t's flat bottom: lower 2.9e-4 above the true 0 (campaign seed 1206, case 16931)",
+    ),
 ];
 
 /// The frozen random profiles, by name.
@@ -310,6 +318,10 @@ const FROZEN_PROFILES: &[(&str, &str)] = &[
     ("rand-s11-6", include_str!("../regressions/rand-s11-6.toml")),
     ("rand-s2-16", include_str!("../regressions/rand-s2-16.toml")),
     ("rand-s2-92", include_str!("../regressions/rand-s2-92.toml")),
+    (
+        "rand-s1206-27",
+        include_str!("../regressions/rand-s1206-27.toml"),
+    ),
 ];
 
 /// The pool: built-in models, M_t frames every 0.05, random profiles of three size classes.

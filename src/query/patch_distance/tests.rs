@@ -318,3 +318,42 @@ fn kernels_and_gauss_restriction_agree() {
     );
     assert!(fails.is_empty(), "{} failures: {fails:#?}", fails.len());
 }
+
+/// A cone tip (an arc ending on its axis with a steep tangent) poking 7.8e-4 through a
+/// flat annulus whose segment is tilted by rounding (1e-18): the patches cross, so their
+/// distance is 0. The crossing scan once multiplied the two mirror halves of the annulus'
+/// implicit function, a square with no sign change when the halves nearly coincide, and
+/// returned the tip-to-plane distance 7.8e-4 (campaign seed 1206, case 16931, a certified
+/// lower bound above the true distance 0).
+#[test]
+fn cone_tip_through_a_nearly_flat_annulus_crosses() {
+    let tip = Patch::new(ProfileArc::Arc {
+        center: Point2::new(0.25247347735529013, 1.0319028408927775),
+        radius: 0.4205752142817924,
+        phi_start: -2.214678958174935,
+        sweep: 0.027670121627622377,
+    });
+    let annulus = Patch::new(ProfileArc::Segment {
+        start: Point2::new(0.3983674691812611, -2.665102487030627e-18),
+        end: Point2::new(0.42173493836252207, -1.2173649133985668e-18),
+    });
+    let rot = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+        0.8108565397064,
+        0.0,
+        0.0,
+        0.58524496752673,
+    ));
+    let pos = Isometry3::from_parts(
+        Translation3::new(
+            -0.26577150075868694,
+            -0.3096366496004632,
+            0.6947616256937329,
+        ),
+        rot,
+    );
+    let d = patch_distance(&tip, &annulus, &pos);
+    assert!(d.distance <= 1e-12, "{}", d.distance);
+    // Both ways round.
+    let d = patch_distance(&annulus, &tip, &pos.inverse());
+    assert!(d.distance <= 1e-12, "{}", d.distance);
+}
