@@ -1,6 +1,7 @@
 //! Where a distance query spends its time (issue 11): per model pair and eps, over seeded
-//! poses near contact (gaps log-uniform in [1e-3, 1e-1]), the median query time and the
-//! traversal counters.
+//! poses near contact (gaps log-uniform in [1e-3, 1e-1]), the median query time, the
+//! traversal counters, and the mean time per query in stage-1 leaf bounds (incl. stage 1b)
+//! and in exact leaf solves (the rest is node bounds, the queue and solid semantics).
 //!
 //! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]
 //! [--repeat K] [--closed-form on|off]` (`off`: balls and solid tori go through the traversal
@@ -69,8 +70,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     if eps_list.is_empty() {
         eps_list = vec![1e-3, 1e-4, 1e-5];
     }
-    println!("| pair | eps | median us | p90 us | node pairs | bound tests | leaf bounds | exact leaves | patch bounds | exact patches | subdivided | max width |");
-    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    println!("| pair | eps | median us | p90 us | node pairs | bound tests | leaf bounds | exact leaves | patch bounds | exact patches | subdivided | max width | stage-1 us (mean) | exact us (mean) |");
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for &eps in &eps_list {
         for pair in pairs.split(',') {
             let (na, nb) = pair.split_once('-').ok_or("pair a-b")?;
@@ -104,6 +105,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             let mut times = Vec::new();
             let (mut np, mut lt, mut pt, mut sd, mut w) = (0.0, 0.0, 0.0, 0.0, 0.0f64);
             let (mut bt, mut lb, mut pb) = (0.0, 0.0, 0.0);
+            let (mut stage1_ns, mut exact_ns) = (0.0, 0.0);
             for _ in 1..repeat {
                 for b in &placed {
                     std::hint::black_box(distance(&sa, b, &opts));
@@ -120,14 +122,24 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 lt += d.stats.leaf_tests as f64;
                 pt += d.stats.patch_tests as f64;
                 sd += d.stats.subdivided_pairs as f64;
+                stage1_ns += d.stats.leaf_bounds_ns as f64;
+                exact_ns += d.stats.leaf_tests_ns as f64;
                 w = w.max(d.upper - d.lower);
             }
             let n = placed.len() as f64;
             let med = median(&mut times);
             let p90 = times[(0.9 * (n - 1.0)) as usize];
             println!(
-                "| {pair} | {eps:.0e} | {med:.1} | {p90:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {w:.2e} |",
-                np / n, bt / n, lb / n, lt / n, pb / n, pt / n, sd / n
+                "| {pair} | {eps:.0e} | {med:.1} | {p90:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {w:.2e} | {:.1} | {:.1} |",
+                np / n,
+                bt / n,
+                lb / n,
+                lt / n,
+                pb / n,
+                pt / n,
+                sd / n,
+                stage1_ns / n / 1e3,
+                exact_ns / n / 1e3
             );
         }
     }
