@@ -134,12 +134,20 @@ fn height_range(piece: &ProfileArc, pos_ab: &Isometry3<f64>) -> (f64, f64) {
 /// parallel lies over it: the pairs of straight pieces that no circle bound can separate
 /// near contact (issue 11). `-inf` when neither way separates.
 pub fn slab_bound(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f64 {
-    let own = |p: &ProfileArc| {
-        let d = Disk::around(p);
-        match *p {
-            ProfileArc::Segment { start, end } => (start.y.min(end.y), start.y.max(end.y)),
-            ProfileArc::Arc { .. } => (d.center.y - d.radius, d.center.y + d.radius),
-        }
+    slab_bound_in(a, b, &Disk::around(a), &Disk::around(b), pos_ab)
+}
+
+/// [`slab_bound`] with the pieces' disks ([`Disk::around`]) already at hand.
+pub fn slab_bound_in(
+    a: &ProfileArc,
+    b: &ProfileArc,
+    da: &Disk,
+    db: &Disk,
+    pos_ab: &Isometry3<f64>,
+) -> f64 {
+    let own = |p: &ProfileArc, d: &Disk| match *p {
+        ProfileArc::Segment { start, end } => (start.y.min(end.y), start.y.max(end.y)),
+        ProfileArc::Arc { .. } => (d.center.y - d.radius, d.center.y + d.radius),
     };
     let gap = |(lo, hi): (f64, f64), (olo, ohi): (f64, f64)| {
         if olo > hi {
@@ -151,14 +159,11 @@ pub fn slab_bound(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f6
         }
     };
     let pos_ba = pos_ab.inverse();
-    let ab = gap(own(a), height_range(b, pos_ab));
-    let ba = gap(own(b), height_range(a, &pos_ba));
+    let ab = gap(own(a, da), height_range(b, pos_ab));
+    let ba = gap(own(b, db), height_range(a, &pos_ba));
     let t = pos_ab.translation.vector.norm();
-    let size = |p: &ProfileArc| {
-        let d = Disk::around(p);
-        d.center.coords.norm() + d.radius
-    };
-    ab.max(ba) - BOUND_SLACK * (1.0 + t + size(a) + size(b))
+    let size = |d: &Disk| d.center.coords.norm() + d.radius;
+    ab.max(ba) - BOUND_SLACK * (1.0 + t + size(da) + size(db))
 }
 
 /// Minimum distance between the circle of radius `ra` at height `za` (frame A) and the

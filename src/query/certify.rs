@@ -22,7 +22,7 @@
 //! distance between its pieces), or after `max_pairs` bounds. In every case the returned
 //! value is the smallest queued key: valid however early the search stops, only less tight.
 
-use super::bounds::{shell_bound, slab_bound, torus_bound};
+use super::bounds::{shell_bound, slab_bound_in, torus_bound};
 use super::patch::ProfileArc;
 use super::tree::Disk;
 use nalgebra::Isometry3;
@@ -88,7 +88,7 @@ pub fn patch_lower_bound(
     let cell = |ra: (f64, f64), rb: (f64, f64), parent: f64| {
         let (sa, sb) = (a.sub_piece(ra.0, ra.1), b.sub_piece(rb.0, rb.1));
         let (da, db) = (Disk::around(&sa), Disk::around(&sb));
-        let shell = shell_bound(&sa, &sb, pos_ab).max(slab_bound(&sa, &sb, pos_ab));
+        let shell = shell_bound(&sa, &sb, pos_ab).max(slab_bound_in(&sa, &sb, &da, &db, pos_ab));
         Cell {
             key: parent.max(shell).max(torus_bound(&da, &db, pos_ab)),
             a: ra,

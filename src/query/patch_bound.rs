@@ -22,7 +22,7 @@
 //! in general position) and a few planar closest-point evaluations.
 
 use super::binormal_kernel::{as_circle3, parallel_circle};
-use super::bounds::{shell_bound, slab_bound, sphere_bound, torus_bound, BOUND_SLACK};
+use super::bounds::{shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{Patch, ProfileArc};
 use super::sweep::ParamCircle;
@@ -115,7 +115,7 @@ pub fn patch_lower(
     let (da, db) = (Disk::around(&a.arc), Disk::around(&b.arc));
     let spheres = sphere_bound(&da, &db, pos_ab)
         .max(shell_bound(&a.arc, &b.arc, pos_ab))
-        .max(slab_bound(&a.arc, &b.arc, pos_ab));
+        .max(slab_bound_in(&a.arc, &b.arc, &da, &db, pos_ab));
     if spheres >= prune_at {
         return pruned(spheres);
     }

@@ -374,13 +374,18 @@ fn meridian_crossings(
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
 ) {
     let n = MERIDIAN_SAMPLES;
+    // The meridian's profile samples do not depend on the meridian: computed once.
+    let mut samples = [Point2::origin(); MERIDIAN_SAMPLES + 1];
+    for (i, m) in samples.iter_mut().enumerate() {
+        *m = g.arc.point_at(i as f64 / n as f64);
+    }
     for &th in thetas {
         let e = e_rho(th);
         let at = |s: f64| pos_og * lift(g.arc.point_at(s), &e);
-        let mut prev = implicit_halves(o, &at(0.0));
+        let mut prev = implicit_halves(o, &(pos_og * lift(samples[0], &e)));
         for i in 1..=n {
             let (s0, s1) = ((i - 1) as f64 / n as f64, i as f64 / n as f64);
-            let cur = implicit_halves(o, &at(s1));
+            let cur = implicit_halves(o, &(pos_og * lift(samples[i], &e)));
             for half in 0..2 {
                 if prev[half] != 0.0 && prev[half].signum() == cur[half].signum() {
                     continue;
