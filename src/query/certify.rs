@@ -14,7 +14,11 @@
 //! search pops that smallest key and splits the larger of its two pieces in halves.
 //!
 //! A sub-piece pair on a sphere (or close to one) also has the spherical-shell bound of
-//! [`shell_bound`], exact for a ball touching a surface along a circle.
+//! [`shell_bound`], exact for a ball touching a surface along a circle. Given a separating
+//! direction (the caller's near points), every cell also gets the convex-hull bound of
+//! [`hull_bound`]: chord frusta minus sagittas, whose error shrinks with the square of the
+//! sub-piece length where the disk bounds' shrinks linearly; the torus bound (a circle/circle
+//! minimum) is then computed only for cells the closed forms leave below the target.
 //!
 //! **Stopping.** It stops when the smallest key is within `precision` of a known upper bound
 //! (the kernel's sampled value), or when the popped pair is finer than `precision` (its
@@ -22,10 +26,10 @@
 //! distance between its pieces), or after `max_pairs` bounds. In every case the returned
 //! value is the smallest queued key: valid however early the search stops, only less tight.
 
-use super::bounds::{shell_bound, slab_bound_in, torus_bound};
+use super::bounds::{hull_bound, shell_bound, slab_bound_in, torus_bound};
 use super::patch::ProfileArc;
 use super::tree::Disk;
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Vector3};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -76,7 +80,8 @@ fn initial_ranges(p: &ProfileArc) -> Vec<(f64, f64)> {
 }
 
 /// Rigorous lower bound of the distance between the revolved pieces `a` (frame A) and `b`
-/// (placed by `pos_ab`), searched to `precision` below `upper` (module doc).
+/// (placed by `pos_ab`), searched to `precision` below `upper` (module doc); `dir`, when
+/// given, is the first direction of the cells' hull bounds (any direction is valid).
 pub fn patch_lower_bound(
     a: &ProfileArc,
     b: &ProfileArc,
@@ -84,13 +89,21 @@ pub fn patch_lower_bound(
     upper: f64,
     precision: f64,
     max_pairs: usize,
+    dir: Option<&Vector3<f64>>,
 ) -> f64 {
     let cell = |ra: (f64, f64), rb: (f64, f64), parent: f64| {
         let (sa, sb) = (a.sub_piece(ra.0, ra.1), b.sub_piece(rb.0, rb.1));
         let (da, db) = (Disk::around(&sa), Disk::around(&sb));
         let shell = shell_bound(&sa, &sb, pos_ab).max(slab_bound_in(&sa, &sb, &da, &db, pos_ab));
+        let hull = dir.map_or(f64::NEG_INFINITY, |n| hull_bound(&sa, &sb, pos_ab, n));
+        let mut key = parent.max(shell).max(hull);
+        // The torus bound (a circle/circle minimum, the expensive part) only where the
+        // closed forms do not already reach the search's target.
+        if key < upper - precision {
+            key = key.max(torus_bound(&da, &db, pos_ab));
+        }
         Cell {
-            key: parent.max(shell).max(torus_bound(&da, &db, pos_ab)),
+            key,
             a: ra,
             b: rb,
             radii: da.radius + db.radius,
@@ -181,7 +194,7 @@ mod tests {
                     sampled = sampled.min(d);
                 }
             }
-            let lb = patch_lower_bound(&a, &b, &pos, sampled, 1e-3, 1 << 20);
+            let lb = patch_lower_bound(&a, &b, &pos, sampled, 1e-3, 1 << 20, None);
             assert!(
                 lb <= sampled + 1e-12,
                 "case {case}: {lb} > sampled {sampled}"

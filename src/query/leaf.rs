@@ -150,7 +150,13 @@ impl<'q> LeafPair<'q> {
             if lower.lower <= 0.0 {
                 // The pieces' tori overlap, which near contact mostly means a long or flat
                 // piece, not a crossing: a few sub-piece bounds usually separate them.
-                let split = self.split_lower((na, nb), (pa, pb), prune_at, STAGE1_SPLIT_PAIRS);
+                let split = self.split_lower(
+                    (na, nb),
+                    (pa, pb),
+                    prune_at,
+                    STAGE1_SPLIT_PAIRS,
+                    lower.direction(),
+                );
                 if split <= 0.0 {
                     return None;
                 }
@@ -180,13 +186,15 @@ impl<'q> LeafPair<'q> {
         let mut lower = f64::INFINITY;
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
-            let cheap = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores).lower;
+            let cheap = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores);
+            let dir = cheap.direction();
+            let cheap = cheap.lower;
             // Once one patch pair stays below the level the leaf pair is kept whatever the
             // others give: their cheap bounds suffice (the minimum must still cover them).
             let pair = if cheap >= prune_at || lower < prune_at {
                 cheap
             } else {
-                cheap.max(self.split_lower((na, nb), (pa, pb), prune_at, TIGHTEN_PAIRS))
+                cheap.max(self.split_lower((na, nb), (pa, pb), prune_at, TIGHTEN_PAIRS, dir))
             };
             lower = lower.min(pair);
         }
@@ -201,9 +209,18 @@ impl<'q> LeafPair<'q> {
         (pa, pb): (&Patch, &Patch),
         prune_at: f64,
         budget: usize,
+        dir: Option<Vector3<f64>>,
     ) -> f64 {
         let precision = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
-        patch_lower_bound(&pa.arc, &pb.arc, self.pos_ab, prune_at, precision, budget)
+        patch_lower_bound(
+            &pa.arc,
+            &pb.arc,
+            self.pos_ab,
+            prune_at,
+            precision,
+            budget,
+            dir.as_ref(),
+        )
     }
 
     fn settled(&self, b: &PatchBounds) -> bool {
@@ -265,6 +282,7 @@ impl<'q> LeafPair<'q> {
                     pd.distance,
                     precision,
                     CERTIFY_MAX_PAIRS,
+                    Some(&(pd.point_b - pd.point_a)),
                 )
             } else {
                 pd.distance

@@ -22,13 +22,15 @@
 //! in general position) and a few planar closest-point evaluations.
 
 use super::binormal_kernel::{as_circle3, parallel_circle};
-use super::bounds::{shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK};
+use super::bounds::{
+    hull_bound, shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK,
+};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{Patch, ProfileArc};
 use super::sweep::ParamCircle;
 use super::tree::Disk;
 use crate::circle::min_distance;
-use nalgebra::{Isometry3, Point2, Point3, Vector2};
+use nalgebra::{Isometry3, Point2, Point3, Vector2, Vector3};
 
 /// Bounds of one patch pair's distance (A's frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -99,11 +101,20 @@ pub struct PatchLower {
     near: Option<(Point3<f64>, Point3<f64>)>,
 }
 
+impl PatchLower {
+    /// Direction from A's near point to B's (A's frame), a separating direction for
+    /// [`super::bounds::hull_bound`]; `None` when the bound stopped early.
+    pub fn direction(&self) -> Option<Vector3<f64>> {
+        self.near.map(|(a, b)| b - a)
+    }
+}
+
 /// The cheap lower bound of a patch pair alone: the bounding spheres of the disks around
 /// the pieces and the spherical-shell bound of arcs centred near the axis (closed form),
 /// and, while that does not reach `prune_at`, the arcs' torus
 /// bound (or the disks' solid-torus bound and the torus/cone bound when a piece is
-/// straight).
+/// straight), and then the convex-hull bound of [`hull_bound`] along the direction of the
+/// near points (it separates short pieces whose tori overlap, issue 11).
 pub fn patch_lower(
     a: &Patch,
     b: &Patch,
@@ -140,6 +151,13 @@ pub fn patch_lower(
                 None => (disks, mid_point(a), pos_ab * mid_point(b)),
             }
         }
+    };
+    // The hull bound along the near points' direction: tight where the tori overlap
+    // but the short pieces themselves are well apart (second order in the piece length).
+    let lower = if lower < prune_at {
+        lower.max(hull_bound(&a.arc, &b.arc, pos_ab, &(near_b - near_a)))
+    } else {
+        lower
     };
     PatchLower {
         lower,
