@@ -189,62 +189,125 @@ pub fn hull_bound(
     pos_ab: &Isometry3<f64>,
     dir: &nalgebra::Vector3<f64>,
 ) -> f64 {
-    use nalgebra::Vector3;
-    /// Chord end points and sagitta of a piece (`None` above a half turn).
-    fn chord(p: &ProfileArc) -> Option<([nalgebra::Point2<f64>; 2], f64)> {
-        match *p {
-            ProfileArc::Segment { start, end } => Some(([start, end], 0.0)),
+    match (ParallelHull::of_piece(a), ParallelHull::of_piece(b)) {
+        (Some(ha), Some(hb)) => ha.bound(&hb, pos_ab, dir),
+        _ => f64::NEG_INFINITY,
+    }
+}
+
+/// A set lying within `grow` of the convex hull of up to three parallels (circles about the
+/// axis, given by their meridian points `(rho, z)`): a revolved chord (two parallels), a
+/// revolved biarc's two chords (three), each with its sagittas and any further bound added
+/// to `grow` ([`hull_bound`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParallelHull {
+    points: [nalgebra::Point2<f64>; 3],
+    len: usize,
+    /// Distance by which the set may leave the hull.
+    pub grow: f64,
+}
+
+impl ParallelHull {
+    /// The hull of a piece's chord, grown by its sagitta (`None` for an arc of sweep above
+    /// pi, which may leave the chord's frustum by more than its sagitta).
+    pub fn of_piece(p: &ProfileArc) -> Option<ParallelHull> {
+        let grow = match *p {
+            ProfileArc::Segment { .. } => 0.0,
             ProfileArc::Arc { radius, sweep, .. } if sweep.abs() <= std::f64::consts::PI => {
+                // r (1 - cos(s / 2)) without cancellation.
                 let q = (0.25 * sweep).sin();
-                Some(([p.start(), p.end()], 2.0 * radius * q * q))
+                2.0 * radius * q * q
             }
-            ProfileArc::Arc { .. } => None,
-        }
+            ProfileArc::Arc { .. } => return None,
+        };
+        let (s, e) = (p.start(), p.end());
+        Some(ParallelHull {
+            points: [s, e, e],
+            len: 2,
+            grow,
+        })
     }
-    let n0 = dir.norm();
-    let (Some((ea, ha)), Some((eb, hb))) = (chord(a), chord(b)) else {
-        return f64::NEG_INFINITY;
-    };
-    if n0 == 0.0 || !n0.is_finite() {
-        return f64::NEG_INFINITY;
-    }
-    // Circles (centre, unit normal, radius) in A's frame.
-    let ka = Vector3::z();
-    let kb = pos_ab.rotation * Vector3::z();
-    let ca = ea.map(|e| (Point3::new(0.0, 0.0, e.y), e.x.abs()));
-    let cb = eb.map(|e| (pos_ab * Point3::new(0.0, 0.0, e.y), e.x.abs()));
-    // Support value and point of a circle in direction n.
-    let support = |c: &Point3<f64>, r: f64, k: &Vector3<f64>, n: &Vector3<f64>| {
-        let perp = n - k * n.dot(k);
-        let l = perp.norm();
-        let p = if l > 0.0 { c + perp * (r / l) } else { *c };
-        (n.dot(&c.coords) + r * l, p)
-    };
-    let hull = |cs: &[(Point3<f64>, f64); 2], k: &Vector3<f64>, n: &Vector3<f64>| {
-        let (v0, p0) = support(&cs[0].0, cs[0].1, k, n);
-        let (v1, p1) = support(&cs[1].0, cs[1].1, k, n);
-        if v0 >= v1 {
-            (v0, p0)
-        } else {
-            (v1, p1)
+
+    /// The hull of consecutive pieces (at most two, joined end to start), grown by the
+    /// largest of their sagittas plus `extra`.
+    pub fn of_pieces(pieces: &[ProfileArc], extra: f64) -> Option<ParallelHull> {
+        let mut h = ParallelHull::of_piece(pieces.first()?)?;
+        if let Some(second) = pieces.get(1) {
+            let h2 = ParallelHull::of_piece(second)?;
+            h.points[2] = second.end();
+            h.len = 3;
+            // The second chord starts at the first one's end within rounding; its own
+            // start is counted as well by growing with the gap.
+            h.grow = h.grow.max(h2.grow) + (second.start() - pieces[0].end()).norm();
         }
-    };
-    let mut n = dir / n0;
-    let mut best = f64::NEG_INFINITY;
-    for _ in 0..3 {
-        let (va, pa) = hull(&ca, &ka, &n);
-        let (vb, pb) = hull(&cb, &kb, &(-n));
-        best = best.max(-vb - va);
-        let w = pb - pa;
-        let l = w.norm();
-        if l == 0.0 || !l.is_finite() {
-            break;
-        }
-        n = w / l;
+        h.grow += extra;
+        Some(h)
     }
-    let size = |e: &[nalgebra::Point2<f64>; 2]| e[0].coords.norm().max(e[1].coords.norm());
-    let scale = 1.0 + pos_ab.translation.vector.norm() + size(&ea) + size(&eb);
-    best - ha - hb - BOUND_SLACK * scale
+
+    /// The hull's meridian points (tests).
+    #[cfg(test)]
+    pub(crate) fn points_for_tests(&self) -> Vec<nalgebra::Point2<f64>> {
+        self.points[..self.len].to_vec()
+    }
+
+    /// Lower bound of the distance between this set (frame A) and `other` (placed by
+    /// `pos_ab`), starting from direction `dir` (module docs of [`hull_bound`]).
+    pub fn bound(
+        &self,
+        other: &ParallelHull,
+        pos_ab: &Isometry3<f64>,
+        dir: &nalgebra::Vector3<f64>,
+    ) -> f64 {
+        use nalgebra::Vector3;
+        let n0 = dir.norm();
+        if n0 == 0.0 || !n0.is_finite() {
+            return f64::NEG_INFINITY;
+        }
+        // Support value and point of this set's hull (own frame, axis z) in direction n.
+        let support = |h: &ParallelHull, n: &Vector3<f64>| {
+            let l = n.x.hypot(n.y);
+            let mut best = (f64::NEG_INFINITY, Point3::origin());
+            for m in &h.points[..h.len] {
+                let r = m.x.abs();
+                let v = n.z * m.y + r * l;
+                if v > best.0 {
+                    let p = if l > 0.0 {
+                        Point3::new(n.x * r / l, n.y * r / l, m.y)
+                    } else {
+                        Point3::new(0.0, 0.0, m.y)
+                    };
+                    best = (v, p);
+                }
+            }
+            best
+        };
+        let rot_ba = pos_ab.rotation.inverse();
+        let t = pos_ab.translation.vector;
+        let mut n = dir / n0;
+        let mut best = f64::NEG_INFINITY;
+        for _ in 0..3 {
+            let (va, pa) = support(self, &n);
+            // B's support in direction -n, computed in B's frame: -n . (R y + t).
+            let nb = rot_ba * (-n);
+            let (vb, qb) = support(other, &nb);
+            let vb = vb - n.dot(&t);
+            best = best.max(-vb - va);
+            let w = pos_ab * qb - pa;
+            let l = w.norm();
+            if l == 0.0 || !l.is_finite() {
+                break;
+            }
+            n = w / l;
+        }
+        let size = |h: &ParallelHull| {
+            h.points[..h.len]
+                .iter()
+                .map(|m| m.coords.norm())
+                .fold(0.0, f64::max)
+        };
+        let scale = 1.0 + t.norm() + size(self) + size(other);
+        best - self.grow - other.grow - BOUND_SLACK * scale
+    }
 }
 
 /// Minimum distance between the circle of radius `ra` at height `za` (frame A) and the

@@ -12,7 +12,7 @@
 //! pair popped again gets the exact solve and becomes resolved; popping a resolved pair
 //! means nothing can be refined further.
 
-use super::bounds::{node_pair_bound, BoundKind};
+use super::bounds::{node_pair_bound, sphere_bound, torus_bound, BoundKind};
 use super::leaf::LeafPair;
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point3};
@@ -139,6 +139,39 @@ fn child_pairs(ta: &QueryTree, tb: &QueryTree, a: u32, b: u32) -> [(u32, u32); 2
     } else {
         [(a, nb.children[0]), (a, nb.children[1])]
     }
+}
+
+/// Key of the node pair `(a, b)` whose parent's key is `parent`: the bounding spheres, then
+/// (when both nodes have one) the hull bound of their fat biarcs
+/// ([`super::bounds::ParallelHull::bound`], closed form), then the solid-torus bound of their disks (a
+/// circle/circle minimum), each only while the key is below `prune_at`.
+#[allow(clippy::too_many_arguments)]
+fn node_key(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    a: u32,
+    b: u32,
+    pos_ab: &Isometry3<f64>,
+    kind: BoundKind,
+    parent: f64,
+    prune_at: f64,
+) -> f64 {
+    let (da, db) = (&ta.nodes[a as usize].bound, &tb.nodes[b as usize].bound);
+    let mut key = parent.max(sphere_bound(da, db, pos_ab));
+    if key >= prune_at || kind == BoundKind::Sphere {
+        return key;
+    }
+    let hull = |t: &QueryTree, i: u32| t.hulls.get(i as usize).copied().flatten();
+    if let (Some(ha), Some(hb)) = (hull(ta, a), hull(tb, b)) {
+        // First direction: between the disks' axis points (the support points then
+        // steer it towards the closest points of the hulls).
+        let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
+        key = key.max(ha.bound(&hb, pos_ab, &dir));
+        if key >= prune_at {
+            return key;
+        }
+    }
+    key.max(torus_bound(da, db, pos_ab))
 }
 
 /// Options of the traversal.
@@ -347,13 +380,7 @@ pub fn traverse(
         for (a, b) in child_pairs(ta, tb, e.a, e.b) {
             stats.bound_tests += 1;
             let prune_at = out.upper - tol;
-            let key = e.key.max(node_pair_bound(
-                &ta.nodes[a as usize].bound,
-                &tb.nodes[b as usize].bound,
-                pos_ab,
-                opts.bound,
-                prune_at,
-            ));
+            let key = node_key(ta, tb, a, b, pos_ab, opts.bound, e.key, prune_at);
             if key < prune_at {
                 heap.push(Entry {
                     key,

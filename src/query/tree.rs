@@ -4,6 +4,7 @@
 //! the original curve piece under it and its approximation. Revolved, the disk is a solid
 //! torus containing the corresponding part of the solid's boundary (see [`super::bounds`]).
 
+use super::bounds::ParallelHull;
 use super::offset::{detect, OffsetSolid};
 use super::patch::{Patch, ProfileArc};
 use crate::biarc::{Arc as BiarcArc, BiarcTree};
@@ -136,6 +137,12 @@ pub struct QueryTree {
     /// The solid is a ball or a solid torus (the chain is one circle): queries between two
     /// such solids take the closed form of [`super::offset`] instead of a traversal.
     pub offset: Option<OffsetSolid>,
+    /// Per node, a hull of parallels that contains its original curve piece's surface up to
+    /// its `grow` (the node's own biarc chords, grown by their sagittas and the biarc's
+    /// bound; paper 4.1's fat biarcs), for the node-pair hull bound
+    /// ([`super::bounds::ParallelHull::bound`]). `None` for nodes without a biarc (the upper
+    /// level over the spirals, trees built from leaves) or with an arc above a half turn.
+    pub hulls: Vec<Option<ParallelHull>>,
 }
 
 impl QueryTree {
@@ -157,6 +164,7 @@ impl QueryTree {
             target_eps: 0.0,
             node_ends: Vec::new(),
             offset: None,
+            hulls: Vec::new(),
         };
         t.target_eps = t.eps;
         if !leaves.is_empty() {
@@ -223,6 +231,7 @@ impl QueryTree {
             target_eps: 0.0,
             node_ends: Vec::new(),
             offset: None,
+            hulls: Vec::new(),
         };
         let roots: Vec<u32> = bt
             .spirals()
@@ -239,6 +248,8 @@ impl QueryTree {
         if !roots.is_empty() {
             t.root = t.build_upper(&roots);
         }
+        // The upper nodes over the spirals have no biarc.
+        t.hulls.resize(t.nodes.len(), None);
         t.index_chain();
         t.offset = detect(&t.chain, t.kind, t.eps);
         t
@@ -297,6 +308,7 @@ impl QueryTree {
             patch_start: 0,
             patch_end: 0,
         };
+        let hull = node_hull(n.arcs(), n.eps(), bt.flat_radius());
         if let Some([c0, c1]) = n.children() {
             let a = self.copy_subtree(bt, c0);
             let b = self.copy_subtree(bt, c1);
@@ -311,6 +323,8 @@ impl QueryTree {
             node.patch_end = self.patches.len() as u32;
         }
         self.nodes.push(node);
+        self.hulls.resize(self.nodes.len() - 1, None);
+        self.hulls.push(hull);
         self.nodes.len() as u32 - 1
     }
 
@@ -397,6 +411,22 @@ impl QueryTree {
     }
 }
 
+/// The hull of a biarc-tree node's curve piece: its biarc as the query revolves it
+/// ([`piece_of_arc`]), which is within `eps` of the piece, and the pieces' representation
+/// error.
+fn node_hull(arcs: &[BiarcArc; 2], eps: f64, flat_radius: f64) -> Option<ParallelHull> {
+    let pieces: Vec<ProfileArc> = arcs
+        .iter()
+        .filter(|a| a.length > 0.0)
+        .map(|a| piece_of_arc(a, flat_radius))
+        .collect();
+    let repr = pieces
+        .iter()
+        .map(|p| p.representation_error())
+        .fold(0.0, f64::max);
+    ParallelHull::of_pieces(&pieces, eps + repr)
+}
+
 /// A biarc tree arc as a profile piece: its chord when the arc is flat for `flat_radius`
 /// (the tree's node bounds already count the sagitta), else the arc in centre form.
 pub fn piece_of_arc(a: &BiarcArc, flat_radius: f64) -> ProfileArc {
@@ -412,5 +442,71 @@ pub fn piece_of_arc(a: &BiarcArc, flat_radius: f64) -> ProfileArc {
             start: a.start,
             end: a.end,
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::model;
+    use crate::solid::Solid;
+    use std::sync::Arc;
+
+    /// Planar distance from `x` to the convex hull of the points `(+-rho, z)` (the meridian
+    /// section of the hull of parallels), from the support function over 3,600 directions:
+    /// at most the true distance, so a value above the allowed growth proves a violation.
+    fn hull_distance(x: Point2<f64>, pts: &[Point2<f64>]) -> f64 {
+        (0..3600)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 3600.0;
+                let n = Vector2::new(a.cos(), a.sin());
+                let h = pts
+                    .iter()
+                    .flat_map(|p| [Vector2::new(p.x, p.y), Vector2::new(-p.x, p.y)])
+                    .map(|p| n.dot(&p))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                n.dot(&x.coords) - h
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Every node's hull contains, up to its growth, the patches of every leaf below it up
+    /// to that leaf's eps (hence the original curve, which is within the leaf eps of its
+    /// patches): dense samples of the patches on the paper models at two eps.
+    #[test]
+    fn node_hulls_contain_the_pieces_below() {
+        for name in ["pawn", "cup", "bottle", "table", "lightmill"] {
+            for eps in [1e-2, 1e-4] {
+                let s = Solid::from_profile(Arc::new(model(name).unwrap()), eps).unwrap();
+                let t = &s.tree;
+                let mut checked = 0;
+                for (id, hull) in t.hulls.iter().enumerate() {
+                    let Some(h) = hull else { continue };
+                    let pts = &h.points_for_tests();
+                    let mut stack = vec![id as u32];
+                    while let Some(n) = stack.pop() {
+                        let node = &t.nodes[n as usize];
+                        if !node.is_leaf() {
+                            stack.extend(node.children);
+                            continue;
+                        }
+                        for p in &t.patches[node.patch_start as usize..node.patch_end as usize] {
+                            for i in 0..=64 {
+                                let x = p.arc.point_at(i as f64 / 64.0);
+                                let d = hull_distance(x, pts);
+                                assert!(
+                                    d <= h.grow + node.eps + 1e-12,
+                                    "{name} eps {eps} node {id}: {d} > {} + {}",
+                                    h.grow,
+                                    node.eps
+                                );
+                            }
+                        }
+                    }
+                    checked += 1;
+                }
+                assert!(checked >= 3, "{name}: {checked} hulls");
+            }
+        }
     }
 }
