@@ -440,7 +440,7 @@ mod tests {
         let (mut separated, mut tight) = (0, 0);
         for case in 0..300 {
             let piece = |f: &mut dyn FnMut() -> f64, k: usize| -> ProfileArc {
-                if k % 3 == 0 {
+                if k.is_multiple_of(3) {
                     ProfileArc::Segment {
                         start: nalgebra::Point2::new(0.05 + f(), f() - 0.5),
                         end: nalgebra::Point2::new(0.05 + f(), f() - 0.5),

@@ -383,9 +383,9 @@ fn meridian_crossings(
         let e = e_rho(th);
         let at = |s: f64| pos_og * lift(g.arc.point_at(s), &e);
         let mut prev = implicit_halves(o, &(pos_og * lift(samples[0], &e)));
-        for i in 1..=n {
+        for (i, m) in samples.iter().enumerate().skip(1) {
             let (s0, s1) = ((i - 1) as f64 / n as f64, i as f64 / n as f64);
-            let cur = implicit_halves(o, &(pos_og * lift(samples[i], &e)));
+            let cur = implicit_halves(o, &(pos_og * lift(*m, &e)));
             for half in 0..2 {
                 if prev[half] != 0.0 && prev[half].signum() == cur[half].signum() {
                     continue;
