@@ -28,6 +28,22 @@ use nalgebra::{Isometry3, Point2, Point3, Vector3};
 /// `2e-11`; the lower bound already carries [`super::bounds::BOUND_SLACK`]).
 pub const SETTLE_REL: f64 = 1e-10;
 
+/// The absolute settle threshold of a query at configuration scale `scale` between trees
+/// of eps summing to `eps_sum`: [`SETTLE_REL`] of the scale, but at most a quarter of
+/// `eps_sum` when that is positive. A settled pair's value is its realised distance, so at
+/// far poses (scale 1e6: 1e-4) a settle threshold above the trees' accuracy would let the
+/// query's value drift by more than eps from the truth while its certified interval (which
+/// carries the same rounding slack) still holds; the cap sends such pairs to the exact
+/// solve instead, as before the node hull bounds pruned everything else.
+pub fn settle_threshold(scale: f64, eps_sum: f64) -> f64 {
+    let rel = SETTLE_REL * scale;
+    if eps_sum > 0.0 {
+        rel.min(0.25 * eps_sum)
+    } else {
+        rel
+    }
+}
+
 /// Sub-piece torus bounds ([`patch_lower_bound`]) a stage-1 patch pair may spend, about
 /// 1.2 us each, when its cheap bound does not prove it disjoint, before the leaf pair goes
 /// to the exact solve as "may intersect" (100-300 us).
@@ -122,7 +138,7 @@ impl<'q> LeafPair<'q> {
             pos_ba: pos_ab.inverse(),
             orient_a: ta.orientation(),
             orient_b: tb.orientation(),
-            settle: SETTLE_REL * scale,
+            settle: settle_threshold(scale, ta.eps + tb.eps),
             memo: BoundaryMemo::default(),
             cores: CoreMemo::default(),
         }

@@ -299,6 +299,22 @@ const FROZEN: &[(&str, &str, [f64; 3], [f64; 4], f64, &str)] = &[
         0.001,
         "cone tip through M_t's flat bottom: lower 2.9e-4 above the true 0 (campaign seed 1206, case 16931)",
     ),
+    (
+        "rand-s1403-71",
+        "rand-s1403-112",
+        [-150830.88384849156, 581168.0016307904, -1867188.734448362],
+        [-0.6777219547642899, 0.0, 0.0, 0.735318265807718],
+        1e-6,
+        "far pose (|t| ~ 2e6): a stage-1 pair settled at 1e-10 of the scale gave a value 5e-6 above the truth (campaign seed 1403, case 330)",
+    ),
+    (
+        "rand-s1403-181",
+        "rand-s1403-40",
+        [260815.8747713738, 247632.8503875786, -1207910.5184916898],
+        [-0.9795215005224895, 0.0, 0.0, 0.2013395887901097],
+        1e-6,
+        "far pose (|t| ~ 1e6): the same, value 1.1e-5 above the truth (campaign seed 1403, case 413)",
+    ),
 ];
 
 /// The frozen random profiles, by name.
@@ -321,6 +337,22 @@ const FROZEN_PROFILES: &[(&str, &str)] = &[
     (
         "rand-s1206-27",
         include_str!("../regressions/rand-s1206-27.toml"),
+    ),
+    (
+        "rand-s1403-71",
+        include_str!("../regressions/rand-s1403-71.toml"),
+    ),
+    (
+        "rand-s1403-112",
+        include_str!("../regressions/rand-s1403-112.toml"),
+    ),
+    (
+        "rand-s1403-181",
+        include_str!("../regressions/rand-s1403-181.toml"),
+    ),
+    (
+        "rand-s1403-40",
+        include_str!("../regressions/rand-s1403-40.toml"),
     ),
 ];
 
