@@ -25,11 +25,17 @@
 //! `patch_bounds`, `patch_tests`). A leaf pair is measured exactly only when its sharpened
 //! lower bound still holds the query's lower bound; on the exact torus that never happens.
 //!
-//! Where the time goes now (close poses, eps 1e-4, `query_cost --repeat 25` under `perf`):
-//! on the freeform paper models about 1-2 leaf pairs per query still need the exact solve
-//! (half of the time: boundary-parallel binormals and crossing scans), and a third of the
-//! time is circle/circle minima behind node, stage-1 and sub-piece bounds (~1-3 us each,
-//! a few hundred per query). Before the stage-1 split and stage 1b, 3-9 leaf pairs per query
+//! Where the time goes now (close poses, eps 1e-4, `query_cost --repeat 15` under `perf`):
+//! on the paper models 1-2 leaf pairs per query still need the exact solve (about 40% of
+//! the time: boundary-parallel binormals, crossing scans of pairs that may intersect), the
+//! remaining leaf bounds and sub-piece bounds about a third, node bounds about a sixth;
+//! circle/circle minima are about 30% of all of it. The convex-hull bounds
+//! ([`bounds::hull_bound`], [`bounds::ParallelHull`]) cut the leaf pairs a query evaluates
+//! by a factor 2.5-3 (cup-bottle 13.6 -> 4.6, table-lightmill 14.2 -> 5.8): a node's biarc
+//! chords grown by their sagittas bound its surface to second order in the piece length,
+//! where the disks of the node bounds are first order, and they separate the short straight
+//! or flat pieces whose solid tori overlap, which fed the sub-piece splits.
+//! Before the stage-1 split and stage 1b, 3-9 leaf pairs per query
 //! went to the exact solve, 80% of them as "may intersect" only because a straight piece's
 //! or a wide arc's solid torus overlapped the other piece. A closed-form threshold test of
 //! the circle/circle bounds against the pruning level (the certificate quartic at the
@@ -43,9 +49,8 @@
 //! global minimum and so needs one uniform eps per tree and trees built to eps/4. It passed
 //! the oracle (2,014 cases, 0 violations) but moved query times by -15% to +10%, within
 //! noise: exact leaves per query stayed at 1-2, because the pairs that reach the exact stage
-//! are mostly straight pieces at creases and pairs whose solid-torus bounds overlap. The
-//! time is in the bounds: per close query on the paper models, stage-1 and stage-1b leaf
-//! bounds take about as long as the exact solves (`query_cost`'s time-split columns).
+//! are mostly straight pieces at creases and pairs whose solid-torus bounds overlap (both
+//! measured before the hull bounds, which then went after the bounds' cost instead).
 //!
 //! # Layout
 //!
