@@ -415,16 +415,18 @@ impl QueryTree {
 /// ([`piece_of_arc`]), which is within `eps` of the piece, and the pieces' representation
 /// error.
 fn node_hull(arcs: &[BiarcArc; 2], eps: f64, flat_radius: f64) -> Option<ParallelHull> {
-    let pieces: Vec<ProfileArc> = arcs
-        .iter()
-        .filter(|a| a.length > 0.0)
-        .map(|a| piece_of_arc(a, flat_radius))
-        .collect();
-    let repr = pieces
-        .iter()
-        .map(|p| p.representation_error())
-        .fold(0.0, f64::max);
-    ParallelHull::of_pieces(&pieces, eps + repr)
+    let mut pieces = [ProfileArc::Segment {
+        start: Point2::origin(),
+        end: Point2::origin(),
+    }; 2];
+    let mut n = 0;
+    let mut repr: f64 = 0.0;
+    for a in arcs.iter().filter(|a| a.length > 0.0) {
+        pieces[n] = piece_of_arc(a, flat_radius);
+        repr = repr.max(pieces[n].representation_error());
+        n += 1;
+    }
+    ParallelHull::of_pieces(&pieces[..n], eps + repr)
 }
 
 /// A biarc tree arc as a profile piece: its chord when the arc is flat for `flat_radius`

@@ -25,11 +25,12 @@
 use experiments::args as cli;
 use experiments::baseline_mesh::{agrees_with_fcl, Layout};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
+use experiments::shapes::query_tree_bytes;
 use experiments::stats::human_bytes;
 use nalgebra::Isometry3;
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
-use revdist::query::{distance, QueryOptions, QueryTree, Tolerance};
+use revdist::query::{distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -67,14 +68,6 @@ fn profile(name: &str) -> Result<Profile, Box<dyn std::error::Error>> {
 fn diagonal(p: &Profile) -> f64 {
     let b = p.bounding_box();
     (b.max.x - b.min.x).hypot(b.max.y - b.min.y)
-}
-
-/// Bytes of the arrays a query touches in a `QueryTree`.
-fn query_tree_bytes(t: &QueryTree) -> usize {
-    std::mem::size_of_val(t.nodes.as_slice())
-        + std::mem::size_of_val(t.patches.as_slice())
-        + std::mem::size_of_val(t.chain.as_slice())
-        + std::mem::size_of_val(t.node_ends.as_slice())
 }
 
 struct Args {
