@@ -355,6 +355,7 @@ pub fn node_pair_bound(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::query::patch_distance::tests::Rng;
     use nalgebra::{Translation3, UnitQuaternion, Vector3};
 
     /// The circle/circle distance behind the solid-torus bound never exceeds a dense
@@ -363,13 +364,8 @@ mod tests {
     /// parallel or coaxial circles.
     #[test]
     fn circle_distance_is_a_valid_minimum() {
-        let mut s = 3u64;
-        let mut f = move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut s = Rng(3);
+        let mut f = move || s.f();
         for i in 0..400 {
             let (ra, za, rb, zb) = (0.1 + f(), f() - 0.5, 0.1 + f(), f() - 0.5);
             let rot = match i % 4 {
@@ -406,18 +402,29 @@ mod tests {
     /// revolved piece (planar distance in B's meridian plane): an upper estimate of the
     /// distance, within the sampling's resolution of it.
     fn sampled_distance(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f64 {
+        sampled_closest(a, b, pos_ab).0
+    }
+
+    /// [`sampled_distance`] with its closest pair (A's frame): the sample of A and its exact
+    /// closest point on B.
+    fn sampled_closest(
+        a: &ProfileArc,
+        b: &ProfileArc,
+        pos_ab: &Isometry3<f64>,
+    ) -> (f64, Point3<f64>, Point3<f64>) {
         let n = 300;
         let pos_ba = pos_ab.inverse();
-        let mut best = f64::INFINITY;
+        let b = crate::query::patch::Patch { arc: *b };
+        let mut best = (f64::INFINITY, Point3::origin(), Point3::origin());
         for i in 0..=n {
             let m = a.point_at(i as f64 / n as f64);
             for k in 0..n {
                 let th = k as f64 * std::f64::consts::TAU / n as f64;
-                let x = pos_ba * Point3::new(m.x * th.cos(), m.x * th.sin(), m.y);
-                let d = b
-                    .closest_point(nalgebra::Point2::new(x.x.hypot(x.y), x.z))
-                    .0;
-                best = best.min(d);
+                let p = Point3::new(m.x * th.cos(), m.x * th.sin(), m.y);
+                let (d, q) = b.point_distance(&(pos_ba * p));
+                if d < best.0 {
+                    best = (d, p, pos_ab * q);
+                }
             }
         }
         best
@@ -430,13 +437,8 @@ mod tests {
     /// within a fraction of the sampled distance in most separated cases.
     #[test]
     fn hull_bound_is_valid_for_every_direction() {
-        let mut s = 23u64;
-        let mut f = move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut s = Rng(23);
+        let mut f = move || s.f();
         let (mut separated, mut tight) = (0, 0);
         for case in 0..300 {
             let piece = |f: &mut dyn FnMut() -> f64, k: usize| -> ProfileArc {
@@ -458,7 +460,7 @@ mod tests {
             let rot = UnitQuaternion::from_scaled_axis(Vector3::new(f(), f(), f()) * 3.0);
             let t = Vector3::new(f() - 0.5, f() - 0.5, f() - 0.5) * 4.0;
             let pos = Isometry3::from_parts(Translation3::from(t), rot);
-            let sampled = sampled_distance(&a, &b, &pos);
+            let (sampled, pa, pb) = sampled_closest(&a, &b, &pos);
             for _ in 0..4 {
                 let dir = Vector3::new(f() - 0.5, f() - 0.5, f() - 0.5);
                 let h = hull_bound(&a, &b, &pos, &dir);
@@ -468,7 +470,6 @@ mod tests {
                 );
             }
             // The direction from A's sampled closest point to B's.
-            let (pa, pb) = sampled_pair(&a, &b, &pos);
             let h = hull_bound(&a, &b, &pos, &(pb - pa));
             assert!(
                 h <= sampled + 1e-12,
@@ -488,49 +489,13 @@ mod tests {
         );
     }
 
-    /// The closest pair of a dense sampling of A against B's exact point distance (A's frame).
-    fn sampled_pair(
-        a: &ProfileArc,
-        b: &ProfileArc,
-        pos_ab: &Isometry3<f64>,
-    ) -> (Point3<f64>, Point3<f64>) {
-        let n = 200;
-        let pos_ba = pos_ab.inverse();
-        let mut best = (f64::INFINITY, Point3::origin(), Point3::origin());
-        for i in 0..=n {
-            let m = a.point_at(i as f64 / n as f64);
-            for k in 0..n {
-                let th = k as f64 * std::f64::consts::TAU / n as f64;
-                let p = Point3::new(m.x * th.cos(), m.x * th.sin(), m.y);
-                let x = pos_ba * p;
-                let rho = x.x.hypot(x.y);
-                let (d, c) = b.closest_point(nalgebra::Point2::new(rho, x.z));
-                if d < best.0 {
-                    let e = if rho > 0.0 {
-                        Vector3::new(x.x / rho, x.y / rho, 0.0)
-                    } else {
-                        Vector3::x()
-                    };
-                    let q = Point3::new(c.x * e.x, c.x * e.y, c.y);
-                    best = (d, p, pos_ab * q);
-                }
-            }
-        }
-        (best.1, best.2)
-    }
-
     /// The shell and slab bounds never exceed the sampled distance, over random arcs
     /// centred on or near the axis (spheres), horizontal and slanted segments and poses;
     /// and they are not vacuous: each separates a good share of the pairs.
     #[test]
     fn shell_and_slab_bounds_are_valid() {
-        let mut s = 17u64;
-        let mut f = move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut s = Rng(17);
+        let mut f = move || s.f();
         let (mut shell_hits, mut slab_hits) = (0, 0);
         for case in 0..300 {
             let piece = |f: &mut dyn FnMut() -> f64, kind: usize| match kind {

@@ -143,19 +143,15 @@ pub fn patch_lower_bound(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::query::patch_distance::tests::Rng;
     use nalgebra::{Point2, Translation3, UnitQuaternion, Vector3};
 
     /// The bound never exceeds a dense sampling of the true distance (an upper estimate)
     /// and, with budget enough, comes within the precision of it.
     #[test]
     fn bound_is_valid_and_tight() {
-        let mut s = 11u64;
-        let mut f = move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut s = Rng(11);
+        let mut f = move || s.f();
         for case in 0..60 {
             let arc = |f: &mut dyn FnMut() -> f64| ProfileArc::Arc {
                 center: Point2::new(0.6 + f(), f() - 0.5),

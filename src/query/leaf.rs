@@ -354,6 +354,7 @@ impl<'q> LeafPair<'q> {
 mod tests {
     use super::*;
     use crate::models::model;
+    use crate::query::patch_distance::tests::Rng;
     use crate::solid::Solid;
     use nalgebra::{Translation3, UnitQuaternion};
     use std::sync::Arc;
@@ -373,13 +374,8 @@ mod tests {
                 .collect::<Vec<_>>()
         };
         let (la, lb) = (leaves(&a.tree), leaves(&b.tree));
-        let mut s = 7u64;
-        let mut f = move || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut s = Rng(7);
+        let mut f = move || s.f();
         let mut checked = 0;
         for _ in 0..10 {
             let rot = UnitQuaternion::from_scaled_axis(Vector3::new(f(), f(), f()) * 3.0);

@@ -207,6 +207,7 @@ pub fn offset_distance(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::query::patch_distance::tests::Rng;
     use nalgebra::{Point2, Translation3, UnitQuaternion};
 
     fn arc(c: [f64; 2], r: f64, phi0: f64, sweep: f64) -> ProfileArc {
@@ -284,13 +285,8 @@ mod tests {
             };
             c + d * s.radius
         };
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut seed = Rng(7);
+        let mut rnd = move || seed.f();
         for ia in 0..solids.len() {
             for ib in 0..solids.len() {
                 for _ in 0..3 {

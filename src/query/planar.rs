@@ -261,6 +261,7 @@ fn arc_segment_interior(s: &ProfileArc, a: &ProfileArc) -> (f64, Point2<f64>, Po
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::query::patch_distance::tests::Rng;
     use std::f64::consts::PI;
 
     fn sample(p: &ProfileArc, n: usize) -> Vec<Point2<f64>> {
@@ -321,13 +322,8 @@ mod tests {
     /// Against dense sampling of both pieces (sampling error bounded by the spacing).
     #[test]
     fn piece_distance_matches_sampling() {
-        let mut seed = 99u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut seed = Rng(99);
+        let mut rnd = move || seed.f();
         for _ in 0..300 {
             let piece = |rnd: &mut dyn FnMut() -> f64| {
                 if rnd() < 0.4 {
