@@ -198,6 +198,7 @@ fn patch_kernels(c: &mut Criterion) {
                     pose,
                     BoundKind::Torus,
                     f64::INFINITY,
+                    None,
                 ));
             }
         })

@@ -337,17 +337,29 @@ pub fn torus_bound(da: &Disk, db: &Disk, pos_ab: &Isometry3<f64>) -> f64 {
 }
 
 /// Lower bound for a node pair; `prune_above` lets cheap tests stop early when they already
-/// show the pair cannot beat the current upper bound.
+/// show the pair cannot beat the current upper bound. The bounding spheres first, then, when
+/// both nodes have one, the hulls of their fat biarcs ([`ParallelHull::bound`], closed form,
+/// from the direction between the disks' axis points; the support points then steer it
+/// towards the hulls' closest points), then the solid tori of the disks (a circle/circle
+/// minimum).
 pub fn node_pair_bound(
     da: &Disk,
     db: &Disk,
     pos_ab: &Isometry3<f64>,
     kind: BoundKind,
     prune_above: f64,
+    hulls: Option<(&ParallelHull, &ParallelHull)>,
 ) -> f64 {
-    let s = sphere_bound(da, db, pos_ab);
+    let mut s = sphere_bound(da, db, pos_ab);
     if kind == BoundKind::Sphere || s >= prune_above {
         return s;
+    }
+    if let Some((ha, hb)) = hulls {
+        let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
+        s = s.max(ha.bound(hb, pos_ab, &dir));
+        if s >= prune_above {
+            return s;
+        }
     }
     s.max(torus_bound(da, db, pos_ab))
 }

@@ -680,6 +680,7 @@ fn parallel_lower_bound(e: Point2<f64>, o: &Patch, pos_og: &Isometry3<f64>, enou
         pos_og,
         BoundKind::Torus,
         enough,
+        None,
     ));
     match o.arc {
         ProfileArc::Arc { center, radius, .. } if around < enough => {
@@ -690,6 +691,7 @@ fn parallel_lower_bound(e: Point2<f64>, o: &Patch, pos_og: &Isometry3<f64>, enou
                 pos_og,
                 BoundKind::Torus,
                 enough,
+                None,
             ))
         }
         _ => around,

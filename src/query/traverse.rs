@@ -12,7 +12,7 @@
 //! pair popped again gets the exact solve and becomes resolved; popping a resolved pair
 //! means nothing can be refined further.
 
-use super::bounds::{node_pair_bound, sphere_bound, torus_bound, BoundKind};
+use super::bounds::{node_pair_bound, BoundKind};
 use super::leaf::LeafPair;
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point3};
@@ -141,10 +141,9 @@ fn child_pairs(ta: &QueryTree, tb: &QueryTree, a: u32, b: u32) -> [(u32, u32); 2
     }
 }
 
-/// Key of the node pair `(a, b)` whose parent's key is `parent`: the bounding spheres, then
-/// (when both nodes have one) the hull bound of their fat biarcs
-/// ([`super::bounds::ParallelHull::bound`], closed form), then the solid-torus bound of their disks (a
-/// circle/circle minimum), each only while the key is below `prune_at`.
+/// Key of the node pair `(a, b)` whose parent's key is `parent`: [`node_pair_bound`] with the
+/// nodes' fat-biarc hulls ([`QueryTree::hulls`]), each step only while the key is below
+/// `prune_at` (the parent's key always is: it was popped below the same level).
 #[allow(clippy::too_many_arguments)]
 fn node_key(
     ta: &QueryTree,
@@ -156,22 +155,13 @@ fn node_key(
     parent: f64,
     prune_at: f64,
 ) -> f64 {
+    let hulls = ta
+        .hulls
+        .get(a as usize)
+        .and_then(Option::as_ref)
+        .zip(tb.hulls.get(b as usize).and_then(Option::as_ref));
     let (da, db) = (&ta.nodes[a as usize].bound, &tb.nodes[b as usize].bound);
-    let mut key = parent.max(sphere_bound(da, db, pos_ab));
-    if key >= prune_at || kind == BoundKind::Sphere {
-        return key;
-    }
-    let hull = |t: &QueryTree, i: u32| t.hulls.get(i as usize).copied().flatten();
-    if let (Some(ha), Some(hb)) = (hull(ta, a), hull(tb, b)) {
-        // First direction: between the disks' axis points (the support points then
-        // steer it towards the closest points of the hulls).
-        let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
-        key = key.max(ha.bound(&hb, pos_ab, &dir));
-        if key >= prune_at {
-            return key;
-        }
-    }
-    key.max(torus_bound(da, db, pos_ab))
+    parent.max(node_pair_bound(da, db, pos_ab, kind, prune_at, hulls))
 }
 
 /// Options of the traversal.
@@ -323,6 +313,7 @@ pub fn traverse(
             pos_ab,
             opts.bound,
             f64::INFINITY,
+            None,
         )
     };
     heap.push(Entry {
@@ -413,6 +404,7 @@ pub fn traverse(
                     pos_ab,
                     opts.bound,
                     f64::INFINITY,
+                    None,
                 )
             };
             let (b0, b1) = (bound(pairs[0]), bound(pairs[1]));
