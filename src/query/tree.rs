@@ -322,8 +322,8 @@ impl QueryTree {
             }
             node.patch_end = self.patches.len() as u32;
         }
+        // Children were copied first, so `hulls` is aligned with `nodes` here.
         self.nodes.push(node);
-        self.hulls.resize(self.nodes.len() - 1, None);
         self.hulls.push(hull);
         self.nodes.len() as u32 - 1
     }
