@@ -44,7 +44,7 @@
 use super::binormal_kernel::{
     circle_torus_critical, interior_torus_torus, parallel_circle, parallel_pair_closest,
 };
-use super::bounds::{node_pair_bound, BoundKind, ParallelHull};
+use super::bounds::{hull_bound, node_pair_bound, BoundKind};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
@@ -648,7 +648,7 @@ pub const FAST_PATH_REL: f64 = 1e-12;
 /// frame by `pos_og`) to the patch `o`, from circle/circle minima only: the parallel against
 /// the solid torus of the disk around `o`'s piece and, for an arc, of the arc's own circle
 /// (both contain the patch; [`super::bounds`] and [`super::patch_bound`] give the proofs),
-/// after the closed-form hull bound of [`ParallelHull`].
+/// after the closed-form hull bound of [`hull_bound`].
 /// Returns early once a bound reaches `enough`. A parallel that is a point gets no bound
 /// (its exact distance is cheaper).
 fn parallel_lower_bound(e: Point2<f64>, o: &Patch, pos_og: &Isometry3<f64>, enough: f64) -> f64 {
@@ -657,16 +657,10 @@ fn parallel_lower_bound(e: Point2<f64>, o: &Patch, pos_og: &Isometry3<f64>, enou
     }
     // The convex-hull bound first (closed form): the parallel against the hull of the
     // patch's chord frustum grown by its sagitta.
-    let hull = match ParallelHull::of_piece(&o.arc) {
-        Some(h) => {
-            let par = ParallelHull::of_piece(&ProfileArc::Segment { start: e, end: e })
-                .expect("a segment has a hull");
-            let m = o.arc.point_at(0.5);
-            let dir = pos_og * Point3::new(0.0, 0.0, e.y) - Point3::new(0.0, 0.0, m.y);
-            h.bound(&par, pos_og, &dir)
-        }
-        None => f64::NEG_INFINITY,
-    };
+    let m = o.arc.point_at(0.5);
+    let dir = pos_og * Point3::new(0.0, 0.0, e.y) - Point3::new(0.0, 0.0, m.y);
+    let parallel = ProfileArc::Segment { start: e, end: e };
+    let hull = hull_bound(&o.arc, &parallel, pos_og, &dir);
     if hull >= enough {
         return hull;
     }
