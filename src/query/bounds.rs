@@ -19,6 +19,7 @@
 //! they do not already prune the pair.
 
 use super::binormal_kernel::parallel_circle;
+pub use super::hull::{hull_bound, hull_bound_until, ParallelHull};
 use super::patch::ProfileArc;
 use super::tree::Disk;
 use crate::circle::min_distance_value;
@@ -166,150 +167,6 @@ pub fn slab_bound_in(
     ab.max(ba) - BOUND_SLACK * (1.0 + t + size(da) + size(db))
 }
 
-/// Convex-hull lower bound of two revolved pieces along a separating direction.
-///
-/// A revolved segment is a frustum surface: it lies in the convex hull of its two boundary
-/// circles. A revolved arc of sweep at most pi lies within its sagitta
-/// `h = r (1 - cos(sweep / 2))` of its chord (in each meridian plane, so also in 3-D), hence
-/// within `h` of its chord's frustum. For any unit direction `n`, the support function of
-/// the hull of two circles is the larger of theirs, `n . c + r |n - (n . k) k|` (centre
-/// `c`, unit normal `k`), so every point pair is at least
-/// `-h_B(-n) - h_A(n) - h_a - h_b` apart: a valid bound for every `n`, exact up to the
-/// sagittas when `n` is the direction of the closest points of two convex hulls. Unlike the
-/// disk bounds its error shrinks with the square of the piece length (the sagitta), but it
-/// is useless when one piece wraps around the other (a peg inside a ring: the hull contains
-/// the peg).
-///
-/// `dir` is the first direction tried; two more come from the support points (a few steps
-/// of the usual closest-point iteration), and the best bound is returned. `-inf` for an arc
-/// of sweep above pi or a zero direction.
-pub fn hull_bound(
-    a: &ProfileArc,
-    b: &ProfileArc,
-    pos_ab: &Isometry3<f64>,
-    dir: &nalgebra::Vector3<f64>,
-) -> f64 {
-    match (ParallelHull::of_piece(a), ParallelHull::of_piece(b)) {
-        (Some(ha), Some(hb)) => ha.bound(&hb, pos_ab, dir),
-        _ => f64::NEG_INFINITY,
-    }
-}
-
-/// A set lying within `grow` of the convex hull of up to three parallels (circles about the
-/// axis, given by their meridian points `(rho, z)`): a revolved chord (two parallels), a
-/// revolved biarc's two chords (three), each with its sagittas and any further bound added
-/// to `grow` ([`hull_bound`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ParallelHull {
-    points: [nalgebra::Point2<f64>; 3],
-    len: usize,
-    /// Distance by which the set may leave the hull.
-    pub grow: f64,
-}
-
-impl ParallelHull {
-    /// The hull of a piece's chord, grown by its sagitta (`None` for an arc of sweep above
-    /// pi, which may leave the chord's frustum by more than its sagitta).
-    pub fn of_piece(p: &ProfileArc) -> Option<ParallelHull> {
-        let grow = match *p {
-            ProfileArc::Segment { .. } => 0.0,
-            ProfileArc::Arc { radius, sweep, .. } if sweep.abs() <= std::f64::consts::PI => {
-                // r (1 - cos(s / 2)) without cancellation.
-                let q = (0.25 * sweep).sin();
-                2.0 * radius * q * q
-            }
-            ProfileArc::Arc { .. } => return None,
-        };
-        let (s, e) = (p.start(), p.end());
-        Some(ParallelHull {
-            points: [s, e, e],
-            len: 2,
-            grow,
-        })
-    }
-
-    /// The hull of consecutive pieces (at most two, joined end to start), grown by the
-    /// largest of their sagittas plus `extra`.
-    pub fn of_pieces(pieces: &[ProfileArc], extra: f64) -> Option<ParallelHull> {
-        let mut h = ParallelHull::of_piece(pieces.first()?)?;
-        if let Some(second) = pieces.get(1) {
-            let h2 = ParallelHull::of_piece(second)?;
-            h.points[2] = second.end();
-            h.len = 3;
-            // The second chord starts at the first one's end within rounding; its own
-            // start is counted as well by growing with the gap.
-            h.grow = h.grow.max(h2.grow) + (second.start() - pieces[0].end()).norm();
-        }
-        h.grow += extra;
-        Some(h)
-    }
-
-    /// The hull's meridian points (tests).
-    #[cfg(test)]
-    pub(crate) fn points_for_tests(&self) -> Vec<nalgebra::Point2<f64>> {
-        self.points[..self.len].to_vec()
-    }
-
-    /// Lower bound of the distance between this set (frame A) and `other` (placed by
-    /// `pos_ab`), starting from direction `dir` (module docs of [`hull_bound`]).
-    pub fn bound(
-        &self,
-        other: &ParallelHull,
-        pos_ab: &Isometry3<f64>,
-        dir: &nalgebra::Vector3<f64>,
-    ) -> f64 {
-        use nalgebra::Vector3;
-        let n0 = dir.norm();
-        if n0 == 0.0 || !n0.is_finite() {
-            return f64::NEG_INFINITY;
-        }
-        // Support value and point of this set's hull (own frame, axis z) in direction n.
-        let support = |h: &ParallelHull, n: &Vector3<f64>| {
-            let l = n.x.hypot(n.y);
-            let mut best = (f64::NEG_INFINITY, Point3::origin());
-            for m in &h.points[..h.len] {
-                let r = m.x.abs();
-                let v = n.z * m.y + r * l;
-                if v > best.0 {
-                    let p = if l > 0.0 {
-                        Point3::new(n.x * r / l, n.y * r / l, m.y)
-                    } else {
-                        Point3::new(0.0, 0.0, m.y)
-                    };
-                    best = (v, p);
-                }
-            }
-            best
-        };
-        let rot_ba = pos_ab.rotation.inverse();
-        let t = pos_ab.translation.vector;
-        let mut n = dir / n0;
-        let mut best = f64::NEG_INFINITY;
-        for _ in 0..3 {
-            let (va, pa) = support(self, &n);
-            // B's support in direction -n, computed in B's frame: -n . (R y + t).
-            let nb = rot_ba * (-n);
-            let (vb, qb) = support(other, &nb);
-            let vb = vb - n.dot(&t);
-            best = best.max(-vb - va);
-            let w = pos_ab * qb - pa;
-            let l = w.norm();
-            if l == 0.0 || !l.is_finite() {
-                break;
-            }
-            n = w / l;
-        }
-        let size = |h: &ParallelHull| {
-            h.points[..h.len]
-                .iter()
-                .map(|m| m.coords.norm())
-                .fold(0.0, f64::max)
-        };
-        let scale = 1.0 + t.norm() + size(self) + size(other);
-        best - self.grow - other.grow - BOUND_SLACK * scale
-    }
-}
-
 /// Minimum distance between the circle of radius `ra` at height `za` (frame A) and the
 /// circle of radius `rb` at height `zb` of frame B placed by `pos_ab`: the circle module's
 /// degree-8 solver (paper Appendix A), whose root finder keeps even-multiplicity roots, so
@@ -356,7 +213,7 @@ pub fn node_pair_bound(
     }
     if let Some((ha, hb)) = hulls {
         let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
-        s = s.max(ha.bound(hb, pos_ab, &dir));
+        s = s.max(ha.bound_until(hb, pos_ab, &dir, prune_above));
         if s >= prune_above {
             return s;
         }

@@ -26,7 +26,7 @@
 //! distance between its pieces), or after `max_pairs` bounds. In every case the returned
 //! value is the smallest queued key: valid however early the search stops, only less tight.
 
-use super::bounds::{hull_bound, shell_bound, slab_bound_in, torus_bound};
+use super::bounds::{hull_bound_until, shell_bound, slab_bound_in, torus_bound};
 use super::patch::ProfileArc;
 use super::tree::Disk;
 use nalgebra::{Isometry3, Vector3};
@@ -95,7 +95,9 @@ pub fn patch_lower_bound(
         let (sa, sb) = (a.sub_piece(ra.0, ra.1), b.sub_piece(rb.0, rb.1));
         let (da, db) = (Disk::around(&sa), Disk::around(&sb));
         let shell = shell_bound(&sa, &sb, pos_ab).max(slab_bound_in(&sa, &sb, &da, &db, pos_ab));
-        let hull = dir.map_or(f64::NEG_INFINITY, |n| hull_bound(&sa, &sb, pos_ab, n));
+        let hull = dir.map_or(f64::NEG_INFINITY, |n| {
+            hull_bound_until(&sa, &sb, pos_ab, n, upper)
+        });
         let mut key = parent.max(shell).max(hull);
         // The torus bound (a circle/circle minimum, the expensive part) only where the
         // closed forms do not already reach the search's target.

@@ -74,6 +74,7 @@ pub mod certify;
 pub mod containment;
 pub mod distance;
 pub mod gauss;
+pub mod hull;
 pub mod leaf;
 pub mod line_field;
 pub mod offset;

@@ -23,7 +23,7 @@
 
 use super::binormal_kernel::{as_circle3, parallel_circle};
 use super::bounds::{
-    hull_bound, shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK,
+    hull_bound_until, shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK,
 };
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{Patch, ProfileArc};
@@ -155,7 +155,13 @@ pub fn patch_lower(
     // The hull bound along the near points' direction: tight where the tori overlap
     // but the short pieces themselves are well apart (second order in the piece length).
     let lower = if lower < prune_at {
-        lower.max(hull_bound(&a.arc, &b.arc, pos_ab, &(near_b - near_a)))
+        lower.max(hull_bound_until(
+            &a.arc,
+            &b.arc,
+            pos_ab,
+            &(near_b - near_a),
+            prune_at,
+        ))
     } else {
         lower
     };

@@ -44,7 +44,7 @@
 use super::binormal_kernel::{
     circle_torus_critical, interior_torus_torus, parallel_circle, parallel_pair_closest,
 };
-use super::bounds::{hull_bound, node_pair_bound, BoundKind};
+use super::bounds::{hull_bound_until, node_pair_bound, BoundKind};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{e_rho, lift, Core, Patch, ProfileArc, POINT_SNAP};
 use super::planar;
@@ -660,7 +660,7 @@ fn parallel_lower_bound(e: Point2<f64>, o: &Patch, pos_og: &Isometry3<f64>, enou
     let m = o.arc.point_at(0.5);
     let dir = pos_og * Point3::new(0.0, 0.0, e.y) - Point3::new(0.0, 0.0, m.y);
     let parallel = ProfileArc::Segment { start: e, end: e };
-    let hull = hull_bound(&o.arc, &parallel, pos_og, &dir);
+    let hull = hull_bound_until(&o.arc, &parallel, pos_og, &dir, enough);
     if hull >= enough {
         return hull;
     }
