@@ -237,6 +237,10 @@ pub fn patch_distance_memo(
         // A parallel whose cheap lower bound already reaches the best candidate cannot
         // lower the minimum (nor cross the patch, the bound being positive): no solve.
         let bounded_away = || {
+            if !best.d.is_finite() {
+                // No candidate yet: no bound can reach it.
+                return false;
+            }
             let (o, pos_og) = if of_b { (a, *pos_ab) } else { (b, pos_ba) };
             let lower = parallel_lower_bound(e, o, &pos_og, best.d);
             lower > 0.0 && lower >= best.d
