@@ -13,6 +13,7 @@
 pub mod biarc;
 pub mod circle;
 pub mod models;
+pub mod num;
 pub mod nurbs;
 pub mod poly;
 pub mod profile;

@@ -23,6 +23,7 @@ pub use super::hull::{hull_bound, hull_bound_until, ParallelHull};
 use super::patch::ProfileArc;
 use super::tree::Disk;
 use crate::circle::min_distance_value;
+use crate::num::norm2;
 use nalgebra::{Isometry3, Point3};
 
 /// Relative slack (of the configuration scale) subtracted from computed bounds: the circle
@@ -52,7 +53,7 @@ fn torus_of(d: &Disk) -> (f64, f64, f64) {
 
 /// Distance from point `p` (frame of the circle) to the circle of radius `r` at height `z`.
 fn point_circle(p: &Point3<f64>, r: f64, z: f64) -> f64 {
-    (p.x.hypot(p.y) - r).hypot(p.z - z)
+    norm2(norm2(p.x, p.y) - r, p.z - z)
 }
 
 /// Sphere/sphere and sphere/torus lower bounds of the revolved disks.

@@ -25,6 +25,7 @@
 
 use super::bounds::BOUND_SLACK;
 use super::patch::ProfileArc;
+use crate::num::norm2;
 use nalgebra::{Isometry3, Matrix2, Matrix3, Point2, Point3, Vector2, Vector3};
 
 /// Support points computed at most per bound. The hulls are smooth (circles) where the
@@ -134,7 +135,7 @@ impl ParallelHull {
     /// the largest `n_z z + |rho| |n_xy|` over the parallels, at the parallel's point along
     /// `n`'s horizontal part (its centre when `n` is vertical, also in the hull).
     fn support(&self, n: &Vector3<f64>) -> (f64, Point3<f64>) {
-        let l = n.x.hypot(n.y);
+        let l = norm2(n.x, n.y);
         let mut best = (f64::NEG_INFINITY, Point3::origin());
         for m in &self.points[..self.len] {
             let r = m.x.abs();

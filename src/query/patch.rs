@@ -368,7 +368,7 @@ impl Patch {
     /// The surface is the set of circles through the profile points, so the distance is the
     /// planar distance from `(rho, z)` of the point to the profile piece.
     pub fn point_distance(&self, x: &Point3<f64>) -> (f64, Point3<f64>) {
-        let rho = x.x.hypot(x.y);
+        let rho = crate::num::norm2(x.x, x.y);
         let (d, c) = self.arc.closest_point(Point2::new(rho, x.z));
         let e = if rho > 0.0 {
             Vector3::new(x.x / rho, x.y / rho, 0.0)
@@ -385,7 +385,7 @@ impl Patch {
     /// the line through `x` and the arc centre, or the perpendicular foot on a segment.
     /// `x` on the axis gives a continuum; then `extra_dirs` gives the radial directions tried.
     pub fn critical_feet(&self, x: &Point3<f64>, out: &mut Vec<Point3<f64>>) {
-        let rho = x.x.hypot(x.y);
+        let rho = crate::num::norm2(x.x, x.y);
         if rho > 1e-13 * (1.0 + x.coords.norm()) {
             let e = Vector3::new(x.x / rho, x.y / rho, 0.0);
             self.critical_feet_in_plane(Point2::new(rho, x.z), &e, out);

@@ -51,6 +51,7 @@ use super::planar;
 use super::sweep::{critical_angles, level_angles, level_crossings, ParamCircle, RadialField};
 use super::tree::Disk;
 use crate::circle::min_distance;
+use crate::num::norm2;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
 use std::collections::HashMap;
 
@@ -351,15 +352,15 @@ const MERIDIAN_SAMPLES: usize = 32;
 /// nearly coincide (an arc centred near the axis, a segment within rounding of flat), and a
 /// crossing scan on it missed a cone tip poking through a flat disk (campaign seed 1206).
 fn implicit_halves(o: &Patch, x: &Point3<f64>) -> [f64; 2] {
-    let rho = x.x.hypot(x.y);
+    let rho = norm2(x.x, x.y);
     match o.core() {
         Core::Circle {
             r_major,
             z,
             r_minor,
         } => [
-            (rho - r_major).hypot(x.z - z) - r_minor,
-            (rho + r_major).hypot(x.z - z) - r_minor,
+            norm2(rho - r_major, x.z - z) - r_minor,
+            norm2(rho + r_major, x.z - z) - r_minor,
         ],
         Core::Line { n, c } => [n.x * rho + n.y * x.z - c, -n.x * rho + n.y * x.z - c],
     }
