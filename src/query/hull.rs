@@ -76,6 +76,9 @@ pub fn hull_bound_until(
     }
 }
 
+/// A point of A's hull and a point of B's (A's frame).
+pub type PointPair = (Point3<f64>, Point3<f64>);
+
 /// A set lying within `grow` of the convex hull of up to three parallels (circles about the
 /// axis, given by their meridian points `(rho, z)`): a revolved chord (two parallels), a
 /// revolved biarc's two chords (three), each with its sagittas and any further bound added
@@ -196,7 +199,31 @@ impl ParallelHull {
         let t = pos_ab.translation.vector;
         let scale = 1.0 + t.norm() + self.size() + other.size();
         let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        hull_separation(self, other, pos_ab, dir, enough + slack, cap) - slack
+        hull_separation(self, other, pos_ab, dir, enough + slack, cap).0 - slack
+    }
+
+    /// [`ParallelHull::bound_until`] with the hulls' nearest points found by the
+    /// iteration (A's frame; `None` when the hulls overlap): a start for a realised pair of
+    /// the pieces (two cones have no closed-form nearest points, issue 11). With `converge`
+    /// the iteration is not cut short for an infinite `enough`.
+    pub fn bound_and_witness(
+        &self,
+        other: &ParallelHull,
+        pos_ab: &Isometry3<f64>,
+        dir: &Vector3<f64>,
+        enough: f64,
+        converge: bool,
+    ) -> (f64, Option<PointPair>) {
+        let cap = if converge || enough.is_finite() {
+            MAX_ITERATIONS
+        } else {
+            UNBOUNDED_ITERATIONS
+        };
+        let t = pos_ab.translation.vector;
+        let scale = 1.0 + t.norm() + self.size() + other.size();
+        let slack = self.grow + other.grow + BOUND_SLACK * scale;
+        let (lower, witness) = hull_separation(self, other, pos_ab, dir, enough + slack, cap);
+        (lower - slack, witness)
     }
 }
 
@@ -210,7 +237,7 @@ fn hull_separation(
     dir: &Vector3<f64>,
     enough: f64,
     cap: usize,
-) -> f64 {
+) -> (f64, Option<PointPair>) {
     let rot_ba = pos_ab.rotation.inverse();
     let t = pos_ab.translation.vector;
     // For unit `n`: the bound `-h_B(-n) - h_A(n)` and the point of D = B - A that attains
@@ -218,8 +245,9 @@ fn hull_separation(
     let lowest = |n: &Vector3<f64>| {
         let (va, pa) = a.support(n);
         let (vb, qb) = b.support(&(rot_ba * -n));
+        let qb = pos_ab * qb;
         let lower = -(vb - n.dot(&t)) - va;
-        (lower, pos_ab * qb - pa)
+        (lower, qb - pa, (pa, qb))
     };
     let mut v = *dir;
     let mut simplex = Simplex::default();
@@ -231,7 +259,7 @@ fn hull_separation(
             break;
         }
         let n = v / vn;
-        let (lower, w) = lowest(&n);
+        let (lower, w, pair) = lowest(&n);
         best = best.max(lower);
         // Past the first step `v` is a point of D, so `|v|` bounds the hulls' distance from
         // above: below a finite `enough`, no direction can prove `enough`.
@@ -240,30 +268,50 @@ fn hull_separation(
         if best >= enough || converged {
             break;
         }
-        if !simplex.push(w) {
+        if !simplex.push(w, pair) {
             break;
         }
         v = simplex.closest_to_origin();
     }
-    best
+    (best, simplex.witness())
 }
 
-/// Up to four points of the Minkowski difference.
+/// Up to four points `w = q - p` of the Minkowski difference, each with its points `p` on
+/// hull A and `q` on hull B, and the barycentric coordinates of the closest point found
+/// last.
 #[derive(Default)]
 struct Simplex {
     points: [Vector3<f64>; 4],
+    pairs: [PointPair; 4],
+    weights: [f64; 4],
     len: usize,
 }
 
 impl Simplex {
     /// Adds a vertex; `false` when it repeats one already there (no progress possible).
-    fn push(&mut self, w: Vector3<f64>) -> bool {
+    fn push(&mut self, w: Vector3<f64>, pair: PointPair) -> bool {
         if self.points[..self.len].contains(&w) || self.len == 4 {
             return false;
         }
         self.points[self.len] = w;
+        self.pairs[self.len] = pair;
         self.len += 1;
         true
+    }
+
+    /// The hulls' points whose difference is the last closest point (`None` before the
+    /// first one, or when it was the origin).
+    fn witness(&self) -> Option<PointPair> {
+        if self.len == 0 || self.len == 4 {
+            return None;
+        }
+        let mut p = Vector3::zeros();
+        let mut q = Vector3::zeros();
+        for i in 0..self.len {
+            p += self.pairs[i].0.coords * self.weights[i];
+            q += self.pairs[i].1.coords * self.weights[i];
+        }
+        Some((Point3::from(p), Point3::from(q)))
     }
 
     /// The point of the simplex's hull closest to the origin; the simplex keeps only the
@@ -273,7 +321,7 @@ impl Simplex {
     /// its faces, and the faces without the newest vertex were the previous simplex, whose
     /// closest point `v` the new vertex beats: `v . w < |v|^2`).
     fn closest_to_origin(&mut self) -> Vector3<f64> {
-        let mut best: Option<(f64, Vector3<f64>, u8)> = None;
+        let mut best: Option<(f64, Vector3<f64>, u8, [f64; 4])> = None;
         let newest = 1u8 << (self.len - 1);
         for mask in (1u8..(1 << self.len)).filter(|m| m & newest != 0) {
             let mut idx = [0usize; 4];
@@ -282,21 +330,24 @@ impl Simplex {
                 idx[slot] = i;
                 k += 1;
             }
-            let Some(v) = face_closest(&self.points, &idx[..k]) else {
+            let Some((v, weights)) = face_closest(&self.points, &idx[..k]) else {
                 continue;
             };
             let d = v.norm_squared();
-            if best.is_none_or(|(bd, _, _)| d < bd) {
-                best = Some((d, v, mask));
+            if best.is_none_or(|(bd, _, _, _)| d < bd) {
+                best = Some((d, v, mask, weights));
             }
         }
-        let Some((_, v, mask)) = best else {
+        let Some((_, v, mask, weights)) = best else {
+            self.len = 4;
             return Vector3::zeros();
         };
         let mut kept = 0;
         for i in 0..self.len {
             if mask & (1 << i) != 0 {
                 self.points[kept] = self.points[i];
+                self.pairs[kept] = self.pairs[i];
+                self.weights[kept] = weights[kept];
                 kept += 1;
             }
         }
@@ -305,15 +356,16 @@ impl Simplex {
     }
 }
 
-/// The point of the affine hull of `points[idx]` closest to the origin when it lies inside
-/// their convex hull (all barycentric coordinates positive), else `None` (also for a
-/// degenerate face, whose lower-dimensional faces are tried separately).
-fn face_closest(points: &[Vector3<f64>; 4], idx: &[usize]) -> Option<Vector3<f64>> {
+/// The point of the affine hull of `points[idx]` closest to the origin, with its barycentric
+/// coordinates (in the order of `idx`), when it lies inside their convex hull (all
+/// coordinates positive), else `None` (also for a degenerate face, whose lower-dimensional
+/// faces are tried separately).
+fn face_closest(points: &[Vector3<f64>; 4], idx: &[usize]) -> Option<(Vector3<f64>, [f64; 4])> {
     let p0 = points[idx[0]];
     let e = |j: usize| points[idx[j]] - p0;
     // Minimise |p0 + sum mu_j e_j|: the Gram system G mu = -E^T p0.
     let (mu, m): ([f64; 3], usize) = match idx.len() {
-        1 => return Some(p0),
+        1 => return Some((p0, [1.0, 0.0, 0.0, 0.0])),
         2 => {
             let e1 = e(1);
             let g = e1.norm_squared();
@@ -354,7 +406,9 @@ fn face_closest(points: &[Vector3<f64>; 4], idx: &[usize]) -> Option<Vector3<f64
     if l0 <= 0.0 || mu.iter().any(|&x| x <= 0.0) {
         return None;
     }
-    Some((1..=m).fold(p0, |v, j| v + e(j) * mu[j - 1]))
+    let mut weights = [l0, 0.0, 0.0, 0.0];
+    weights[1..=m].copy_from_slice(mu);
+    Some(((1..=m).fold(p0, |v, j| v + e(j) * mu[j - 1]), weights))
 }
 
 #[cfg(test)]
@@ -434,6 +488,27 @@ mod tests {
                 iterated >= best - 1e-5,
                 "case {case}: iterated {iterated} < best direction {best}"
             );
+            // The witness points lie in their hulls (no direction's support is exceeded)
+            // and are as far apart as the converged bound says (before the sagittas).
+            let (lower, witness) = ha.bound_and_witness(&hb, &pos, &start, f64::INFINITY, true);
+            let (p, q) = witness.expect("separated hulls have nearest points");
+            let separation = lower + ha.grow + hb.grow;
+            assert!(
+                (q - p).norm() - separation <= 1e-5,
+                "case {case}: {} vs {separation}",
+                (q - p).norm()
+            );
+            let q_b = pos.inverse_transform_point(&q);
+            for n in dirs.iter().step_by(97) {
+                assert!(
+                    n.dot(&p.coords) <= ha.support(n).0 + 1e-12,
+                    "case {case}: p outside A"
+                );
+                assert!(
+                    n.dot(&q_b.coords) <= hb.support(n).0 + 1e-12,
+                    "case {case}: q outside B"
+                );
+            }
         }
         assert!(separated > 40, "{separated} separated cases");
     }
