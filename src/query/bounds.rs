@@ -19,7 +19,7 @@
 //! they do not already prune the pair.
 
 use super::binormal_kernel::parallel_circle;
-pub use super::hull::{hull_bound, hull_bound_until, ParallelHull};
+pub use super::hull::{hull_bound, hull_bound_until, ParallelHull, PieceHull};
 use super::patch::ProfileArc;
 use super::tree::Disk;
 use crate::circle::min_distance_value;

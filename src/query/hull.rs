@@ -55,7 +55,7 @@ pub fn hull_bound(
     pos_ab: &Isometry3<f64>,
     dir: &Vector3<f64>,
 ) -> f64 {
-    match (ParallelHull::of_piece(a), ParallelHull::of_piece(b)) {
+    match (PieceHull::of_piece(a), PieceHull::of_piece(b)) {
         (Some(ha), Some(hb)) => ha.bound(&hb, pos_ab, dir),
         _ => f64::NEG_INFINITY,
     }
@@ -70,11 +70,24 @@ pub fn hull_bound_until(
     dir: &Vector3<f64>,
     enough: f64,
 ) -> f64 {
-    match (ParallelHull::of_piece(a), ParallelHull::of_piece(b)) {
+    match (PieceHull::of_piece(a), PieceHull::of_piece(b)) {
         (Some(ha), Some(hb)) => ha.bound_until(&hb, pos_ab, dir, enough),
         _ => f64::NEG_INFINITY,
     }
 }
+
+/// Chords per arc in [`PieceHull::of_piece`]: each halving of the chords quarters the
+/// sagitta the bound loses (an arc of sweep 0.1 rad and radius 0.4 loses 5e-4 with one
+/// chord, 8e-6 with eight), at the cost of more parallels in the support function. The
+/// leaf arcs' sagittas (3e-4 to 4e-3 at eps 1e-4) kept the stage-1 bounds of the leaf
+/// pairs near contact about 1e-3 below their distance. Measured (`query_cost --poses
+/// 100`, eps 1e-4, cup-bottle): exact patch solves per query 1.4 (one chord) -> 0.8 (four
+/// or eight), 114 us (four) -> 108 us (eight) -> 117 us (sixteen). Node hulls keep one
+/// chord per arc ([`ParallelHull::of_pieces`]): the query tree stores them.
+const ARC_CHORDS: usize = 8;
+
+/// The hull of one piece ([`PieceHull::of_piece`]): up to [`ARC_CHORDS`] chords.
+pub type PieceHull = ParallelHull<{ ARC_CHORDS + 1 }>;
 
 /// A point of A's hull and a point of B's (A's frame).
 pub type PointPair = (Point3<f64>, Point3<f64>);
@@ -84,40 +97,30 @@ pub type PointPair = (Point3<f64>, Point3<f64>);
 /// revolved biarc's two chords (three), each with its sagittas and any further bound added
 /// to `grow` ([`hull_bound`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ParallelHull {
-    points: [Point2<f64>; 3],
+pub struct ParallelHull<const N: usize = 3> {
+    points: [Point2<f64>; N],
     len: usize,
     /// Distance by which the set may leave the hull.
     pub grow: f64,
 }
 
-impl ParallelHull {
-    /// The hull of a piece's chord, grown by its sagitta (`None` for an arc of sweep above
-    /// pi, which may leave the chord's frustum by more than its sagitta).
-    pub fn of_piece(p: &ProfileArc) -> Option<ParallelHull> {
-        let grow = match *p {
-            ProfileArc::Segment { .. } => 0.0,
-            ProfileArc::Arc { radius, sweep, .. } if sweep.abs() <= std::f64::consts::PI => {
-                // r (1 - cos(s / 2)) without cancellation.
-                let q = (0.25 * sweep).sin();
-                2.0 * radius * q * q
-            }
-            ProfileArc::Arc { .. } => return None,
-        };
-        let (s, e) = (p.start(), p.end());
-        Some(ParallelHull {
-            points: [s, e, e],
-            len: 2,
-            grow,
-        })
+impl PieceHull {
+    /// The hull of a piece's chords: a segment's two ends, an arc cut into
+    /// [`ARC_CHORDS`] equal sub-arcs, grown by a sub-arc's sagitta (`None` for an arc of
+    /// sweep above pi, which may leave its chord's frustum by more than its sagitta).
+    pub fn of_piece(p: &ProfileArc) -> Option<PieceHull> {
+        PieceHull::of_chords(p, ARC_CHORDS)
     }
+}
 
-    /// The hull of consecutive pieces (at most two, joined end to start), grown by the
-    /// largest of their sagittas plus `extra`.
+impl ParallelHull {
+    /// The hull of consecutive pieces (at most two, joined end to start), one chord each,
+    /// grown by the larger of their sagittas plus `extra` (a node's fat biarc, paper 4.1:
+    /// three parallels keep the query tree small).
     pub fn of_pieces(pieces: &[ProfileArc], extra: f64) -> Option<ParallelHull> {
-        let mut h = ParallelHull::of_piece(pieces.first()?)?;
+        let mut h = ParallelHull::of_chords(pieces.first()?, 1)?;
         if let Some(second) = pieces.get(1) {
-            let h2 = ParallelHull::of_piece(second)?;
+            let h2: ParallelHull = ParallelHull::of_chords(second, 1)?;
             h.points[2] = second.end();
             h.len = 3;
             // The second chord starts at the first one's end within rounding; its own
@@ -126,6 +129,33 @@ impl ParallelHull {
         }
         h.grow += extra;
         Some(h)
+    }
+}
+
+impl<const N: usize> ParallelHull<N> {
+    /// The hull of `parts` equal chords of a piece (one for a segment; `parts < N`), grown
+    /// by the sagitta of one part.
+    fn of_chords(p: &ProfileArc, parts: usize) -> Option<ParallelHull<N>> {
+        let (grow, parts) = match *p {
+            ProfileArc::Segment { .. } => (0.0, 1),
+            ProfileArc::Arc { radius, sweep, .. } if sweep.abs() <= std::f64::consts::PI => {
+                // r (1 - cos(s / 2)) of a part's sweep s, without cancellation.
+                let q = (0.25 * sweep / parts as f64).sin();
+                (2.0 * radius * q * q, parts)
+            }
+            ProfileArc::Arc { .. } => return None,
+        };
+        debug_assert!(parts < N);
+        let mut points = [p.end(); N];
+        points[0] = p.start();
+        for (k, m) in points.iter_mut().enumerate().take(parts).skip(1) {
+            *m = p.point_at(k as f64 / parts as f64);
+        }
+        Some(ParallelHull {
+            points,
+            len: parts + 1,
+            grow,
+        })
     }
 
     /// The hull's meridian points (tests).
@@ -165,16 +195,21 @@ impl ParallelHull {
     /// Lower bound of the distance between this set (frame A) and `other` (placed by
     /// `pos_ab`), starting from direction `dir` (module doc), iterated until it converges to
     /// the hulls' distance (or [`MAX_ITERATIONS`]).
-    pub fn bound(&self, other: &ParallelHull, pos_ab: &Isometry3<f64>, dir: &Vector3<f64>) -> f64 {
+    pub fn bound<const M: usize>(
+        &self,
+        other: &ParallelHull<M>,
+        pos_ab: &Isometry3<f64>,
+        dir: &Vector3<f64>,
+    ) -> f64 {
         self.separation(other, pos_ab, dir, f64::INFINITY, MAX_ITERATIONS)
     }
 
     /// [`ParallelHull::bound`], stopping as soon as the bound reaches `enough`; an infinite
     /// `enough` means no level (the bound only orders a search): then after at most
     /// [`UNBOUNDED_ITERATIONS`] support points.
-    pub fn bound_until(
+    pub fn bound_until<const M: usize>(
         &self,
-        other: &ParallelHull,
+        other: &ParallelHull<M>,
         pos_ab: &Isometry3<f64>,
         dir: &Vector3<f64>,
         enough: f64,
@@ -188,9 +223,9 @@ impl ParallelHull {
     }
 
     /// The bound after at most `cap` support points, stopping once it reaches `enough`.
-    fn separation(
+    fn separation<const M: usize>(
         &self,
-        other: &ParallelHull,
+        other: &ParallelHull<M>,
         pos_ab: &Isometry3<f64>,
         dir: &Vector3<f64>,
         enough: f64,
@@ -206,9 +241,9 @@ impl ParallelHull {
     /// iteration (A's frame; `None` when the hulls overlap): a start for a realised pair of
     /// the pieces (two cones have no closed-form nearest points, issue 11). With `converge`
     /// the iteration is not cut short for an infinite `enough`.
-    pub fn bound_and_witness(
+    pub fn bound_and_witness<const M: usize>(
         &self,
-        other: &ParallelHull,
+        other: &ParallelHull<M>,
         pos_ab: &Isometry3<f64>,
         dir: &Vector3<f64>,
         enough: f64,
@@ -230,9 +265,9 @@ impl ParallelHull {
 /// A lower bound of the distance between the hulls of `a` (frame A) and `b` (placed by
 /// `pos_ab`), iterated from direction `dir` until it reaches `enough`, converges, or has
 /// computed `cap` support points (module doc).
-fn hull_separation(
-    a: &ParallelHull,
-    b: &ParallelHull,
+fn hull_separation<const N: usize, const M: usize>(
+    a: &ParallelHull<N>,
+    b: &ParallelHull<M>,
     pos_ab: &Isometry3<f64>,
     dir: &Vector3<f64>,
     enough: f64,
@@ -418,12 +453,7 @@ mod tests {
     use nalgebra::{Translation3, UnitQuaternion};
 
     /// The bound of one fixed direction `n` (unit, A towards B), without iteration.
-    fn bound_along(
-        a: &ParallelHull,
-        b: &ParallelHull,
-        pos_ab: &Isometry3<f64>,
-        n: &Vector3<f64>,
-    ) -> f64 {
+    fn bound_along(a: &PieceHull, b: &PieceHull, pos_ab: &Isometry3<f64>, n: &Vector3<f64>) -> f64 {
         let (va, _) = a.support(n);
         let (vb, _) = b.support(&(pos_ab.rotation.inverse() * -n));
         -(vb - n.dot(&pos_ab.translation.vector)) - va - a.grow - b.grow
@@ -467,8 +497,8 @@ mod tests {
             let t = Vector3::new(f() - 0.5, f() - 0.5, f() - 0.5) * 5.0;
             let pos = Isometry3::from_parts(Translation3::from(t), rot);
             let (ha, hb) = (
-                ParallelHull::of_piece(&a).unwrap(),
-                ParallelHull::of_piece(&b).unwrap(),
+                PieceHull::of_piece(&a).unwrap(),
+                PieceHull::of_piece(&b).unwrap(),
             );
             let best = dirs
                 .iter()

@@ -22,10 +22,8 @@
 //! in general position) and a few planar closest-point evaluations.
 
 use super::binormal_kernel::{as_circle3, parallel_circle};
-use super::bounds::{
-    shell_bound, slab_bound_in, sphere_bound, torus_bound, ParallelHull, BOUND_SLACK,
-};
-use super::hull::PointPair;
+use super::bounds::{shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK};
+use super::hull::{PieceHull, PointPair};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{Patch, ProfileArc};
 use super::sweep::ParamCircle;
@@ -204,10 +202,7 @@ fn hull_witness(
     enough: f64,
     converge: bool,
 ) -> (f64, Option<PointPair>) {
-    match (
-        ParallelHull::of_piece(&a.arc),
-        ParallelHull::of_piece(&b.arc),
-    ) {
+    match (PieceHull::of_piece(&a.arc), PieceHull::of_piece(&b.arc)) {
         (Some(ha), Some(hb)) => ha.bound_and_witness(&hb, pos_ab, dir, enough, converge),
         _ => (f64::NEG_INFINITY, None),
     }
