@@ -19,7 +19,7 @@
 //! they do not already prune the pair.
 
 use super::binormal_kernel::parallel_circle;
-pub use super::hull::{hull_bound, hull_bound_until, ParallelHull, PieceHull};
+pub use super::hull::{hull_bound, hull_bound_until, NodeHull, ParallelHull, PieceHull};
 use super::patch::ProfileArc;
 use super::tree::Disk;
 use crate::circle::min_distance_value;
@@ -206,7 +206,7 @@ pub fn node_pair_bound(
     pos_ab: &Isometry3<f64>,
     kind: BoundKind,
     prune_above: f64,
-    hulls: Option<(&ParallelHull, &ParallelHull)>,
+    hulls: Option<(&NodeHull, &NodeHull)>,
 ) -> f64 {
     let mut s = sphere_bound(da, db, pos_ab);
     if kind == BoundKind::Sphere || s >= prune_above {

@@ -4,7 +4,7 @@
 //! the original curve piece under it and its approximation. Revolved, the disk is a solid
 //! torus containing the corresponding part of the solid's boundary (see [`super::bounds`]).
 
-use super::bounds::ParallelHull;
+use super::bounds::NodeHull;
 use super::offset::{detect, OffsetSolid};
 use super::patch::{Patch, ProfileArc};
 use crate::biarc::{Arc as BiarcArc, BiarcTree};
@@ -142,7 +142,7 @@ pub struct QueryTree {
     /// bound; paper 4.1's fat biarcs), for the node-pair hull bound
     /// ([`super::bounds::ParallelHull::bound`]). `None` for nodes without a biarc (the upper
     /// level over the spirals, trees built from leaves) or with an arc above a half turn.
-    pub hulls: Vec<Option<ParallelHull>>,
+    pub hulls: Vec<Option<NodeHull>>,
 }
 
 impl QueryTree {
@@ -414,7 +414,7 @@ impl QueryTree {
 /// The hull of a biarc-tree node's curve piece: its biarc as the query revolves it
 /// ([`piece_of_arc`]), which is within `eps` of the piece, and the pieces' representation
 /// error.
-fn node_hull(arcs: &[BiarcArc; 2], eps: f64, flat_radius: f64) -> Option<ParallelHull> {
+fn node_hull(arcs: &[BiarcArc; 2], eps: f64, flat_radius: f64) -> Option<NodeHull> {
     let mut pieces = [ProfileArc::Segment {
         start: Point2::origin(),
         end: Point2::origin(),
@@ -426,7 +426,7 @@ fn node_hull(arcs: &[BiarcArc; 2], eps: f64, flat_radius: f64) -> Option<Paralle
         repr = repr.max(pieces[n].representation_error());
         n += 1;
     }
-    ParallelHull::of_pieces(&pieces[..n], eps + repr)
+    NodeHull::of_pieces(&pieces[..n], eps + repr)
 }
 
 /// A biarc tree arc as a profile piece: its chord when the arc is flat for `flat_radius`
