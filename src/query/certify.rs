@@ -16,7 +16,7 @@
 //! A sub-piece pair on a sphere (or close to one) also has the spherical-shell bound of
 //! [`shell_bound`], exact for a ball touching a surface along a circle. Given a separating
 //! direction (the caller's near points), every cell also gets the convex-hull bound of
-//! [`hull_bound`]: chord frusta minus sagittas, whose error shrinks with the square of the
+//! [`super::hull::hull_bound`]: chord frusta minus sagittas, whose error shrinks with the square of the
 //! sub-piece length where the disk bounds' shrinks linearly; the torus bound (a circle/circle
 //! minimum) is then computed only for cells the closed forms leave below the target.
 //!

@@ -31,7 +31,7 @@ use nalgebra::{Isometry3, Matrix2, Matrix3, Point2, Point3, Vector2, Vector3};
 /// Support points computed at most per bound. The hulls are smooth (circles) where the
 /// iteration converges linearly; 24 steps reach [`GAP_REL`] on the measured leaf pairs,
 /// and a bound stopped early stays valid.
-const MAX_ITERATIONS: usize = 24;
+pub const MAX_ITERATIONS: usize = 24;
 
 /// Support points computed at most when the caller gives no level (`enough` infinite):
 /// before any leaf pair has given an upper bound a node key only orders the search, and
@@ -39,12 +39,12 @@ const MAX_ITERATIONS: usize = 24;
 /// (pawn-pawn at eps 1e-4: 63 -> 108 us per query with full convergence, 67 with 3,
 /// 74 with 5, 82 with 8 steps; `query_cost --poses 100`). [`ParallelHull::bound`] and
 /// [`hull_bound`] are not limited: a caller that wants the hulls' distance gets it.
-const UNBOUNDED_ITERATIONS: usize = 3;
+pub const UNBOUNDED_ITERATIONS: usize = 3;
 
 /// The iteration stops when the bound is within this fraction of the upper estimate `|v|`:
 /// below every tree eps relative to the distances where it matters (1e-6 of a 1e-2 gap is
 /// 1e-8), and the sagittas and tree eps subtracted afterwards are far larger.
-const GAP_REL: f64 = 1e-6;
+pub const GAP_REL: f64 = 1e-6;
 
 /// Convex-hull lower bound of two revolved pieces (module doc), starting from direction
 /// `dir` (from A towards B; any nonzero vector is valid). `-inf` for an arc of sweep above
@@ -84,7 +84,7 @@ pub fn hull_bound_until(
 /// 100`, eps 1e-4, cup-bottle): exact patch solves per query 1.4 (one chord) -> 0.8 (four
 /// or eight), 114 us (four) -> 108 us (eight) -> 117 us (sixteen). Node hulls keep one
 /// chord per arc ([`ParallelHull::of_pieces`]): the query tree stores them.
-const ARC_CHORDS: usize = 8;
+pub const ARC_CHORDS: usize = 8;
 
 /// The hull of one piece ([`PieceHull::of_piece`]): up to [`ARC_CHORDS`] chords.
 pub type PieceHull = ParallelHull<{ ARC_CHORDS + 1 }>;
@@ -95,7 +95,7 @@ pub type NodeHull = ParallelHull<NODE_POINTS>;
 /// Parallels of a node hull: one chord per arc of the node's biarc. Two or four chords per
 /// arc (5 or 9 parallels) left node pairs, leaf pairs and query times unchanged
 /// (`query_cost --poses 100`, eps 1e-4) at up to three times the hull memory.
-const NODE_POINTS: usize = 3;
+pub const NODE_POINTS: usize = 3;
 
 /// A point of A's hull and a point of B's (A's frame).
 pub type PointPair = (Point3<f64>, Point3<f64>);

@@ -10,11 +10,11 @@
 //! | step | where | measured cost (per pair, 2-core EPYC) | what it gives |
 //! | --- | --- | --- | --- |
 //! | closed form | [`offset`] | one core distance, ~0.7 us per query | the whole answer when both solids are balls or solid tori (one circle per profile); no traversal |
-//! | node-pair bound | [`bounds`] | 0.1 us (spheres), ~1-3 us with the solid-torus circle minimum | a valid lower bound; prunes most pairs |
-//! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (one circle/circle minimum, or a circle/cone solve; closed-form shell and slab bounds first) | lower bound and a realised upper bound; settles the pair when they meet |
-//! | stage 1, split | [`leaf`], [`certify`] | up to 24 sub-piece torus bounds (~1-3 us each) | a positive lower bound for a pair whose tori overlap (long, flat or wide pieces), instead of "may intersect" |
-//! | stage 1b, tightened | [`leaf`], [`certify`] | up to 32 sub-piece torus bounds per patch pair | a leaf pair popped again is first given a sharper bound against the current pruning level; most are then pruned |
-//! | leaf stage 2 | [`leaf`], [`mod@patch_distance`] | ~30-300 us per patch pair (degree-8 boundary solves, crossing scan) | the exact patch distance and interpenetration checks |
+//! | node-pair bound | [`bounds`] | 0.1 us (spheres), then the nodes' hull bound ([`hull`], a few support points), then ~0.4 us for the solid-torus circle minimum | a valid lower bound; prunes most pairs |
+//! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (closed-form sphere, shell and slab bounds; the arcs' tori or a circle/cone solve; the pieces' converged hull bound) | lower bound and a realised upper bound (started from the tori's or the hulls' nearest points); settles the pair when they meet |
+//! | stage 1, split | [`leaf`], [`certify`] | up to 8 sub-piece bounds (~1-2 us each) | a positive lower bound for a pair whose tori and hulls overlap, instead of "may intersect" |
+//! | stage 1b, tightened | [`leaf`], [`certify`] | up to 8 sub-piece bounds per patch pair | a leaf pair popped again is first given a sharper bound against the current pruning level; most are then pruned |
+//! | leaf stage 2 | [`leaf`], [`mod@patch_distance`] | a converged hull bound against the leaf's best distance (~1 us), then ~20-50 us per patch pair (degree-8 boundary solves, crossing scan) | the exact patch distance and interpenetration checks |
 //! | boundary pre-bounds | [`mod@patch_distance`] | ~1 us per boundary parallel | skip a degree-8 solve whose parallel cannot beat the best candidate |
 //! | closed forms | [`mod@patch_distance`], [`planar`] | < 1 us | coaxial patches, parallels outside a torus whose closest point is on the patch |
 //!
@@ -25,32 +25,45 @@
 //! `patch_bounds`, `patch_tests`). A leaf pair is measured exactly only when its sharpened
 //! lower bound still holds the query's lower bound; on the exact torus that never happens.
 //!
-//! Where the time goes now (close poses, eps 1e-4, `query_cost --repeat 15` under `perf`):
-//! on the paper models 1-2 leaf pairs per query still need the exact solve (about 40% of
-//! the time: boundary-parallel binormals, crossing scans of pairs that may intersect), the
-//! remaining leaf bounds and sub-piece bounds about a third, node bounds about a sixth;
-//! circle/circle minima are about 30% of all of it. The convex-hull bounds
-//! ([`bounds::hull_bound`], [`bounds::ParallelHull`]) cut the leaf pairs a query evaluates
-//! by a factor 2.5-3 (cup-bottle 13.6 -> 4.6, table-lightmill 14.2 -> 5.8): a node's biarc
-//! chords grown by their sagittas bound its surface to second order in the piece length,
-//! where the disks of the node bounds are first order, and they separate the short straight
-//! or flat pieces whose solid tori overlap, which fed the sub-piece splits.
-//! Before the stage-1 split and stage 1b, 3-9 leaf pairs per query
-//! went to the exact solve, 80% of them as "may intersect" only because a straight piece's
-//! or a wide arc's solid torus overlapped the other piece. A closed-form threshold test of
-//! the circle/circle bounds against the pruning level (the certificate quartic at the
-//! level, no descent) was tried too: it proved the level in only 3-7% of the bound calls
-//! (the minima a query computes are the ones below its pruning level) and was dropped. A cheaper closed-form
-//! circle/circle lower bound in front of the solver was tried and was slower (it rarely
-//! prunes near contact, where the solver is needed anyway). A smooth-junction mode of the
-//! exact kernel was tried too (branch `exp/smooth-junctions`): boundary parallels that are
-//! G1 junctions of the approximating surface are skipped, since a minimum there is a
-//! common normal of the neighbours' tori, which makes the key a bound of the surfaces'
-//! global minimum and so needs one uniform eps per tree and trees built to eps/4. It passed
-//! the oracle (2,014 cases, 0 violations) but moved query times by -15% to +10%, within
-//! noise: exact leaves per query stayed at 1-2, because the pairs that reach the exact stage
-//! are mostly straight pieces at creases and pairs whose solid-torus bounds overlap (both
-//! measured before the hull bounds, which then went after the bounds' cost instead).
+//! **Where the time goes now** (close poses, eps 1e-4, `query_cost --poses 60 --repeat 30`
+//! under `perf`, pawn-pawn, pawn-cup, cup-bottle, table-lightmill): 40-45% in node bounds,
+//! 30% in stage-1 leaf bounds, 15% in exact leaf solves (0.0-0.8 patch pairs per query),
+//! the rest in the queue and solid semantics. Certified circle/circle minima (~0.4 us each,
+//! 60-110 per query: node tori, stage-1 disk tori, sub-piece cells) are 38% of all of it,
+//! the hull iterations 20%. What made the exact stage rare (exact patch solves per query at
+//! eps 1e-4: pawn-cup 2.9 -> 0.5, cup-bottle 4.7 -> 0.8, table-lightmill 3.9 -> 0.1):
+//!
+//! * the hull bound of [`hull`] iterates its direction to convergence (support points on
+//!   the hulls' Minkowski difference, stopped at the caller's level or once the level is
+//!   out of reach); three naive steps left it short of the level in 72% of the pairs that
+//!   then went to an exact solve;
+//! * a piece's hull holds eight chords of an arc, so it loses a sixty-fourth of the
+//!   sagitta, which for leaf arcs near contact (3e-4 to 4e-3 at eps 1e-4) was above the
+//!   distance the bound had to prove;
+//! * the realised pair of two cones starts from the hulls' nearest points (it started from
+//!   the pieces' mid points, 34% too long at the median), so the query's upper bound and
+//!   the settle test see the true distance;
+//! * before a pair's exact solve, its hull bound is searched to the leaf's best distance so
+//!   far, below the pruning level the cheap bound stopped at.
+//!
+//! Earlier (before the hull bounds): 3-9 leaf pairs per query went to the exact solve,
+//! 80% of them as "may intersect" only because a straight piece's or a wide arc's solid
+//! torus overlapped the other piece; the node hulls (a biarc's chords grown by their
+//! sagittas, second order in the piece length where the disks are first order) cut the leaf
+//! pairs a query evaluates by 2.5-3x.
+//!
+//! Tried and dropped (each measured with `query_cost --poses 100`, same counters or within
+//! the machine's 25% noise): a closed-form threshold test of the circle/circle bounds
+//! against the pruning level (it proved the level in 3-7% of the calls); a cheaper
+//! circle/circle lower bound in front of the solver; a smooth-junction mode of the exact
+//! kernel (branch `exp/smooth-junctions`: skipping G1 junction parallels needs one eps per
+//! tree and trees at eps/4, oracle-clean, -15% to +10%); sub-piece splits before every
+//! exact solve (16 cells cost as much as the solves they spared); a sphere-bound dive to a
+//! first leaf pair for cold queries (node keys below the pruning level are needed anyway);
+//! skipping the node torus bound when the hulls are apart (-5%, within noise); two or four
+//! chords per arc in node hulls (no change, up to 3x the hull memory); trees built to eps/4
+//! under the same tolerance (no change: the leaves' eps is not what sends pairs to the
+//! exact stage); a regula-falsi crossing scan (the bisection is not where the time goes).
 //!
 //! # Layout
 //!
@@ -63,7 +76,7 @@
 //!   exact kernel), with the circle/patch kernels [`planar`] (coaxial case), [`sweep`]
 //!   (critical points along a circle), [`binormal_kernel`], [`line_field`], [`gauss`], and
 //!   [`certify`] (subdivision lower bounds where a kernel had to sample);
-//! * node bounds [`bounds`] on the query tree [`tree`];
+//! * node bounds [`bounds`] and convex-hull bounds [`hull`] on the query tree [`tree`];
 //! * solids: [`containment`] (point-in-solid through the tree), [`overlap`] (certificates of
 //!   overlap and nesting); [`refine`] (witnesses on the exact NURBS surfaces).
 

@@ -117,10 +117,12 @@ impl PatchLower {
 
 /// The cheap lower bound of a patch pair alone: the bounding spheres of the disks around
 /// the pieces and the spherical-shell bound of arcs centred near the axis (closed form),
-/// and, while that does not reach `prune_at`, the arcs' torus
-/// bound (or the disks' solid-torus bound and the torus/cone bound when a piece is
-/// straight), and then the convex-hull bound of [`hull_bound`] along the direction of the
-/// near points (it separates short pieces whose tori overlap, issue 11).
+/// and, while that does not reach `prune_at`, the arcs' torus bound (or the disks'
+/// solid-torus bound and the torus/cone bound when a piece is straight), and then the
+/// pieces' convex-hull bound ([`super::hull`]) iterated from the direction of the near
+/// points (it separates short pieces whose tori overlap, issue 11), whose nearest points
+/// are a second start for [`realised`]. Two cones have no near points of their own: the
+/// hull iteration gives both.
 pub fn patch_lower(
     a: &Patch,
     b: &Patch,
