@@ -219,7 +219,44 @@ pub fn node_pair_bound(
             return s;
         }
     }
+    // The solid tori (a certified circle/circle minimum, the costliest step) only when two
+    // points of the major circles do not already show that they cannot reach the level:
+    // the key then stays the spheres' and hulls' (node keys order the search; measured,
+    // the tori's sharper keys did not save node pairs, and with the traversal's first
+    // leaf from [`super::traverse`]'s dive most node keys have a level).
+    if torus_cannot_reach(da, db, pos_ab, prune_above) {
+        return s;
+    }
     s.max(torus_bound(da, db, pos_ab))
+}
+
+/// Whether the solid-torus bound of the disks ([`torus_bound`]) is sure to stay below
+/// `level`: two points on the disks' major circles (alternating closest points, closed
+/// form) are closer than `level` plus both tube radii, so the circles' minimum is too.
+fn torus_cannot_reach(da: &Disk, db: &Disk, pos_ab: &Isometry3<f64>, level: f64) -> bool {
+    if !level.is_finite() {
+        return false;
+    }
+    let (ra, za, sa) = torus_of(da);
+    let (rb, zb, sb) = torus_of(db);
+    // Closest point of a circle (radius r, height z, about the frame's z axis) to x.
+    let on_circle = |x: &Point3<f64>, r: f64, z: f64| {
+        let l = norm2(x.x, x.y);
+        if l > 0.0 {
+            Point3::new(x.x * r / l, x.y * r / l, z)
+        } else {
+            Point3::new(r, 0.0, z)
+        }
+    };
+    let q = on_circle(
+        &pos_ab.inverse_transform_point(&Point3::new(0.0, 0.0, za)),
+        rb,
+        zb,
+    );
+    let p = on_circle(&(pos_ab * q), ra, za);
+    let q = on_circle(&pos_ab.inverse_transform_point(&p), rb, zb);
+    let upper = (p - pos_ab * q).norm();
+    upper - sa - sb < level
 }
 
 #[cfg(test)]

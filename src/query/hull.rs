@@ -244,13 +244,14 @@ impl<const N: usize> ParallelHull<N> {
         let t = pos_ab.translation.vector;
         let scale = 1.0 + t.norm() + self.size() + other.size();
         let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        hull_separation(self, other, pos_ab, dir, enough + slack, cap).0 - slack
+        hull_separation(self, other, pos_ab, dir, enough + slack, cap, true).0 - slack
     }
 
     /// [`ParallelHull::bound_until`] with the hulls' nearest points found by the
     /// iteration (A's frame; `None` when the hulls overlap): a start for a realised pair of
     /// the pieces (two cones have no closed-form nearest points, issue 11). With `converge`
-    /// the iteration is not cut short for an infinite `enough`.
+    /// the iteration runs on to the hulls' distance whatever `enough` (unless the bound
+    /// reaches it): the nearest points are wanted, not only the bound.
     pub fn bound_and_witness<const M: usize>(
         &self,
         other: &ParallelHull<M>,
@@ -267,14 +268,16 @@ impl<const N: usize> ParallelHull<N> {
         let t = pos_ab.translation.vector;
         let scale = 1.0 + t.norm() + self.size() + other.size();
         let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        let (lower, witness) = hull_separation(self, other, pos_ab, dir, enough + slack, cap);
+        let (lower, witness) =
+            hull_separation(self, other, pos_ab, dir, enough + slack, cap, !converge);
         (lower - slack, witness)
     }
 }
 
 /// A lower bound of the distance between the hulls of `a` (frame A) and `b` (placed by
 /// `pos_ab`), iterated from direction `dir` until it reaches `enough`, converges, or has
-/// computed `cap` support points (module doc).
+/// computed `cap` support points (module doc); with `give_up`, also once `enough` is out
+/// of reach.
 fn hull_separation<const N: usize, const M: usize>(
     a: &ParallelHull<N>,
     b: &ParallelHull<M>,
@@ -282,6 +285,7 @@ fn hull_separation<const N: usize, const M: usize>(
     dir: &Vector3<f64>,
     enough: f64,
     cap: usize,
+    give_up: bool,
 ) -> (f64, Option<PointPair>) {
     let rot_ba = pos_ab.rotation.inverse();
     let t = pos_ab.translation.vector;
@@ -308,7 +312,7 @@ fn hull_separation<const N: usize, const M: usize>(
         best = best.max(lower);
         // Past the first step `v` is a point of D, so `|v|` bounds the hulls' distance from
         // above: below a finite `enough`, no direction can prove `enough`.
-        let hopeless = enough.is_finite() && vn < enough;
+        let hopeless = give_up && enough.is_finite() && vn < enough;
         let converged = step > 0 && (hopeless || vn - lower <= GAP_REL * vn);
         if best >= enough || converged {
             break;
