@@ -10,7 +10,8 @@
 //! | step | where | measured cost (per pair, 2-core EPYC) | what it gives |
 //! | --- | --- | --- | --- |
 //! | closed form | [`offset`] | one core distance, ~0.7 us per query | the whole answer when both solids are balls or solid tori (one circle per profile); no traversal |
-//! | node-pair bound | [`bounds`] | 0.1 us (spheres), then the nodes' hull bound ([`hull`], a few support points), then ~0.4 us for the solid-torus circle minimum | a valid lower bound; prunes most pairs |
+//! | first leaf (cold query) | [`traverse`] | a dive along sphere bounds and one leaf pair's stage-1 bounds | a finite upper bound before any node key, so every key can stop at the pruning level |
+//! | node-pair bound | [`bounds`] | 0.1 us (spheres), then the nodes' hull bound ([`hull`], a few support points), then ~0.4 us for the solid-torus circle minimum, skipped when two points of the circles show it cannot reach the level | a valid lower bound; prunes most pairs |
 //! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (closed-form sphere, shell and slab bounds; the arcs' tori or a circle/cone solve; the pieces' converged hull bound) | lower bound and a realised upper bound (started from the tori's or the hulls' nearest points); settles the pair when they meet |
 //! | stage 1, split | [`leaf`], [`certify`] | up to 8 sub-piece bounds (~1-2 us each) | a positive lower bound for a pair whose tori and hulls overlap, instead of "may intersect" |
 //! | stage 1b, tightened | [`leaf`], [`certify`] | up to 8 sub-piece bounds per patch pair | a leaf pair popped again is first given a sharper bound against the current pruning level; most are then pruned |
@@ -25,13 +26,16 @@
 //! `patch_bounds`, `patch_tests`). A leaf pair is measured exactly only when its sharpened
 //! lower bound still holds the query's lower bound; on the exact torus that never happens.
 //!
-//! **Where the time goes now** (close poses, eps 1e-4, `query_cost --poses 60 --repeat 30`
-//! under `perf`, pawn-pawn, pawn-cup, cup-bottle, table-lightmill): 40-45% in node bounds,
-//! 30% in stage-1 leaf bounds, 15% in exact leaf solves (0.0-0.8 patch pairs per query),
-//! the rest in the queue and solid semantics. Certified circle/circle minima (~0.4 us each,
-//! 60-110 per query: node tori, stage-1 disk tori, sub-piece cells) are 38% of all of it,
-//! the hull iterations 20%. What made the exact stage rare (exact patch solves per query at
-//! eps 1e-4: pawn-cup 2.9 -> 0.5, cup-bottle 4.7 -> 0.8, table-lightmill 3.9 -> 0.1):
+//! **Where the time goes now** (close poses, eps 1e-4, `query_cost --poses 100`, medians
+//! 40-96 us on pawn-pawn, pawn-cup, cup-bottle, table-lightmill): stage-1 leaf bounds take
+//! 55-70% of the time (the dive's first leaf included), exact leaf solves 0-25% (0.0-0.7
+//! patch pairs per query), node bounds and the queue the rest. Certified circle/circle
+//! minima (~0.4 us each: stage-1 disk tori, sub-piece cells, the node tori that can still
+//! prune) and the hull iterations are most of it. Before the dive, about 65 of a query's 75
+//! node keys were computed in full while the upper bound was still infinite, and the node
+//! tori were 39% of all the time. What made the exact stage rare (exact patch solves per
+//! query at eps 1e-4: pawn-cup 2.9 -> 0.4, cup-bottle 4.7 -> 0.7, table-lightmill 3.9 ->
+//! 0.0):
 //!
 //! * the hull bound of [`hull`] iterates its direction to convergence (support points on
 //!   the hulls' Minkowski difference, stopped at the caller's level or once the level is
@@ -58,9 +62,11 @@
 //! circle/circle lower bound in front of the solver; a smooth-junction mode of the exact
 //! kernel (branch `exp/smooth-junctions`: skipping G1 junction parallels needs one eps per
 //! tree and trees at eps/4, oracle-clean, -15% to +10%); sub-piece splits before every
-//! exact solve (16 cells cost as much as the solves they spared); a sphere-bound dive to a
-//! first leaf pair for cold queries (node keys below the pruning level are needed anyway);
-//! skipping the node torus bound when the hulls are apart (-5%, within noise); two or four
+//! exact solve (16 cells cost as much as the solves they spared); the dive alone, or the
+//! circles' reach test alone (each needs the other: without a level nothing is skipped,
+//! and with a level but no skip the keys are computed in full anyway); keeping the dive
+//! leaf's key (its bounds without a level are loose, more exact solves); skipping the node
+//! torus bound whenever the hulls are apart (-5%, within noise); two or four
 //! chords per arc in node hulls (no change, up to 3x the hull memory); trees built to eps/4
 //! under the same tolerance (no change: the leaves' eps is not what sends pairs to the
 //! exact stage); a regula-falsi crossing scan (the bisection is not where the time goes).
