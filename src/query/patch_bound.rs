@@ -145,12 +145,14 @@ pub fn patch_lower(
     // With a pruning level, the pieces' hull bound first: it prunes most pairs that the
     // closed forms leave, before any circle/circle minimum or circle/cone solve (stage-1
     // time -10 to -15%, `query_cost --poses 100`, eps 1e-4).
+    let mut early = None;
     if prune_at.is_finite() {
         let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
-        let (hull, _) = hull_witness(a, b, pos_ab, &dir, prune_at, false);
+        let (hull, witness) = hull_witness(a, b, pos_ab, &dir, prune_at, false);
         if hull >= prune_at {
             return pruned(hull);
         }
+        early = Some((hull, witness));
     }
     let (lower, near_a, near_b) = match arc_tori(a, b, pos_ab, memo) {
         // An arc of large radius lies on a fat torus; its disk's solid torus is thinner
@@ -189,9 +191,12 @@ pub fn patch_lower(
             }
         }
     };
-    // The hull bound along the near points' direction: tight where the tori overlap
-    // but the short pieces themselves are well apart (second order in the piece length).
-    let (lower, hull_near) = if lower < prune_at {
+    // The hull bound (unless computed above, with a level): tight where the tori overlap
+    // but the short pieces themselves are well apart (second order in the piece length);
+    // without a level, iterated from the near points' direction.
+    let (lower, hull_near) = if let Some((hull, witness)) = early {
+        (lower.max(hull), witness)
+    } else if lower < prune_at {
         let (hull, witness) = hull_witness(a, b, pos_ab, &(near_b - near_a), prune_at, false);
         (lower.max(hull), witness)
     } else {
