@@ -89,6 +89,13 @@ pub const ARC_CHORDS: usize = 8;
 /// The hull of one piece ([`PieceHull::of_piece`]): up to [`ARC_CHORDS`] chords.
 pub type PieceHull = ParallelHull<{ ARC_CHORDS + 1 }>;
 
+/// Rounding per rotation step of [`PieceHull::of_piece`]'s chord points, relative to the
+/// arc's size (radius plus centre distance): a rotation by a sine/cosine pair moves a unit
+/// vector off the unit circle and off its angle by at most about 3 ulps, and placing the
+/// point adds one more of the size; 8 ulps (1.8e-15) per step covers both. The hull grows
+/// by it, so the chords' hull contains the arc exactly, not only up to rounding.
+const ROTATION_ROUNDING: f64 = 8.0 * f64::EPSILON;
+
 /// The hull of a query-tree node ([`ParallelHull::of_pieces`]).
 pub type NodeHull = ParallelHull<NODE_POINTS>;
 
@@ -146,26 +153,40 @@ impl<const N: usize> ParallelHull<N> {
     /// The hull of `parts` equal chords of a piece (one for a segment; `parts < N`), grown
     /// by the sagitta of one part.
     fn of_chords(p: &ProfileArc, parts: usize) -> Option<ParallelHull<N>> {
-        let (grow, parts) = match *p {
-            ProfileArc::Segment { .. } => (0.0, 1),
-            ProfileArc::Arc { radius, sweep, .. } if sweep.abs() <= std::f64::consts::PI => {
-                // r (1 - cos(s / 2)) of a part's sweep s, without cancellation.
-                let q = (0.25 * sweep / parts as f64).sin();
-                (2.0 * radius * q * q, parts)
+        debug_assert!(parts < N);
+        let mut points = [p.end(); N];
+        let (grow, len) = match *p {
+            ProfileArc::Segment { start, .. } => {
+                points[0] = start;
+                (0.0, 2)
+            }
+            ProfileArc::Arc {
+                center,
+                radius,
+                phi_start,
+                sweep,
+            } if sweep.abs() <= std::f64::consts::PI => {
+                // The chord points by rotating the start's direction (two sine/cosine pairs
+                // instead of one per point); the end is the piece's own.
+                let step = sweep / parts as f64;
+                let (sd, cd) = step.sin_cos();
+                let (s0, c0) = phi_start.sin_cos();
+                let mut u = Vector2::new(c0, s0);
+                points[0] = center + radius * u;
+                for m in points.iter_mut().take(parts).skip(1) {
+                    u = Vector2::new(u.x * cd - u.y * sd, u.x * sd + u.y * cd);
+                    *m = center + radius * u;
+                }
+                // r (1 - cos(s / 2)) of a part's sweep s, without cancellation, plus the
+                // rotations' rounding: each of up to `parts` steps moves a point off the
+                // arc by at most a few ulps of the radius (ROTATION_ROUNDING each).
+                let q = (0.25 * step).sin();
+                let rounding = ROTATION_ROUNDING * parts as f64 * (radius + center.coords.norm());
+                (2.0 * radius * q * q + rounding, parts + 1)
             }
             ProfileArc::Arc { .. } => return None,
         };
-        debug_assert!(parts < N);
-        let mut points = [p.end(); N];
-        points[0] = p.start();
-        for (k, m) in points.iter_mut().enumerate().take(parts).skip(1) {
-            *m = p.point_at(k as f64 / parts as f64);
-        }
-        Some(ParallelHull {
-            points,
-            len: parts + 1,
-            grow,
-        })
+        Some(ParallelHull { points, len, grow })
     }
 
     /// The hull's meridian points (tests).
@@ -471,6 +492,41 @@ mod tests {
         let (va, _) = a.support(n);
         let (vb, _) = b.support(&(pos_ab.rotation.inverse() * -n));
         -(vb - n.dot(&pos_ab.translation.vector)) - va - a.grow - b.grow
+    }
+
+    /// An arc's chord points (placed by rotation, [`PieceHull::of_piece`]) lie on the arc
+    /// within the rounding the hull grows by, at their equally spaced angles.
+    #[test]
+    fn chord_points_lie_on_the_arc() {
+        let mut s = Rng(5);
+        for _ in 0..2000 {
+            let (center, radius) = (
+                Point2::new(4.0 * s.f() - 1.0, 4.0 * s.f() - 2.0),
+                1e-3 + 3.0 * s.f(),
+            );
+            let (phi_start, sweep) = (
+                20.0 * s.f() - 10.0,
+                (2.0 * s.f() - 1.0) * std::f64::consts::PI,
+            );
+            let arc = ProfileArc::Arc {
+                center,
+                radius,
+                phi_start,
+                sweep,
+            };
+            let h = PieceHull::of_piece(&arc).unwrap();
+            let pts = h.points_for_tests();
+            assert_eq!(pts.len(), ARC_CHORDS + 1);
+            let allowance = ROTATION_ROUNDING * ARC_CHORDS as f64 * (radius + center.coords.norm());
+            for (k, p) in pts.iter().enumerate() {
+                let exact = arc.point_at(k as f64 / ARC_CHORDS as f64);
+                assert!(
+                    (p - exact).norm() <= allowance,
+                    "{k}: {} > {allowance}",
+                    (p - exact).norm()
+                );
+            }
+        }
     }
 
     /// The iterated bound reaches the best of 20,000 directions spread over the sphere, from a
