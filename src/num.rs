@@ -19,18 +19,14 @@ pub fn norm2(x: f64, y: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::norm2;
+    use crate::query::patch_distance::tests::Rng;
 
     /// Agrees with `hypot` to 1.5 ulp over magnitudes from 1e-200 to 1e200, including
     /// zeros, one-sided inputs and the fallback ranges.
     #[test]
     fn matches_hypot() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = Rng(0x2545_f491);
+        let mut next = move || rng.f();
         for _ in 0..200_000 {
             let ex = (next() * 400.0 - 200.0).round() as i32;
             let ey = ex + (next() * 40.0 - 20.0).round() as i32;

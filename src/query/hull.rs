@@ -232,12 +232,13 @@ impl<const N: usize> ParallelHull<N> {
         pos_ab: &Isometry3<f64>,
         dir: &Vector3<f64>,
     ) -> f64 {
-        self.separation(other, pos_ab, dir, f64::INFINITY, MAX_ITERATIONS)
+        self.bound_and_witness(other, pos_ab, dir, f64::INFINITY, true)
+            .0
     }
 
-    /// [`ParallelHull::bound`], stopping as soon as the bound reaches `enough`; an infinite
-    /// `enough` means no level (the bound only orders a search): then after at most
-    /// [`UNBOUNDED_ITERATIONS`] support points.
+    /// [`ParallelHull::bound`], stopping as soon as the bound reaches `enough` or shows it
+    /// out of reach; an infinite `enough` means no level (the bound only orders a search):
+    /// then after at most [`UNBOUNDED_ITERATIONS`] support points.
     pub fn bound_until<const M: usize>(
         &self,
         other: &ParallelHull<M>,
@@ -245,27 +246,7 @@ impl<const N: usize> ParallelHull<N> {
         dir: &Vector3<f64>,
         enough: f64,
     ) -> f64 {
-        let cap = if enough.is_finite() {
-            MAX_ITERATIONS
-        } else {
-            UNBOUNDED_ITERATIONS
-        };
-        self.separation(other, pos_ab, dir, enough, cap)
-    }
-
-    /// The bound after at most `cap` support points, stopping once it reaches `enough`.
-    fn separation<const M: usize>(
-        &self,
-        other: &ParallelHull<M>,
-        pos_ab: &Isometry3<f64>,
-        dir: &Vector3<f64>,
-        enough: f64,
-        cap: usize,
-    ) -> f64 {
-        let t = pos_ab.translation.vector;
-        let scale = 1.0 + t.norm() + self.size() + other.size();
-        let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        hull_separation(self, other, pos_ab, dir, enough + slack, cap, true).0 - slack
+        self.bound_and_witness(other, pos_ab, dir, enough, false).0
     }
 
     /// [`ParallelHull::bound_until`] with the hulls' nearest points found by the
