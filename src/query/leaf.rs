@@ -177,9 +177,7 @@ impl<'q> LeafPair<'q> {
                     (na, nb),
                     (pa, pb),
                     prune_at,
-                    std::env::var("S1")
-                        .map(|v| v.parse().unwrap())
-                        .unwrap_or(STAGE1_SPLIT_PAIRS),
+                    STAGE1_SPLIT_PAIRS,
                     lower.direction(),
                 );
                 if split <= 0.0 {
@@ -219,17 +217,7 @@ impl<'q> LeafPair<'q> {
             let pair = if cheap >= prune_at || lower < prune_at {
                 cheap
             } else {
-                cheap.max(
-                    self.split_lower(
-                        (na, nb),
-                        (pa, pb),
-                        prune_at,
-                        std::env::var("S2")
-                            .map(|v| v.parse().unwrap())
-                            .unwrap_or(TIGHTEN_PAIRS),
-                        dir,
-                    ),
-                )
+                cheap.max(self.split_lower((na, nb), (pa, pb), prune_at, TIGHTEN_PAIRS, dir))
             };
             lower = lower.min(pair);
         }
