@@ -55,10 +55,7 @@ pub fn hull_bound(
     pos_ab: &Isometry3<f64>,
     dir: &Vector3<f64>,
 ) -> f64 {
-    match (PieceHull::of_piece(a), PieceHull::of_piece(b)) {
-        (Some(ha), Some(hb)) => ha.bound(&hb, pos_ab, dir),
-        _ => f64::NEG_INFINITY,
-    }
+    hull_bound_and_witness(a, b, pos_ab, dir, f64::INFINITY, true).0
 }
 
 /// [`hull_bound`], stopping as soon as the bound reaches `enough` (see
@@ -70,9 +67,22 @@ pub fn hull_bound_until(
     dir: &Vector3<f64>,
     enough: f64,
 ) -> f64 {
+    hull_bound_and_witness(a, b, pos_ab, dir, enough, false).0
+}
+
+/// The pieces' hull bound and the hulls' nearest points ([`ParallelHull::bound_and_witness`]);
+/// `-inf` and `None` for an arc of sweep above pi.
+pub fn hull_bound_and_witness(
+    a: &ProfileArc,
+    b: &ProfileArc,
+    pos_ab: &Isometry3<f64>,
+    dir: &Vector3<f64>,
+    enough: f64,
+    converge: bool,
+) -> (f64, Option<PointPair>) {
     match (PieceHull::of_piece(a), PieceHull::of_piece(b)) {
-        (Some(ha), Some(hb)) => ha.bound_until(&hb, pos_ab, dir, enough),
-        _ => f64::NEG_INFINITY,
+        (Some(ha), Some(hb)) => ha.bound_and_witness(&hb, pos_ab, dir, enough, converge),
+        _ => (f64::NEG_INFINITY, None),
     }
 }
 
@@ -107,10 +117,10 @@ pub const NODE_POINTS: usize = 3;
 /// A point of A's hull and a point of B's (A's frame).
 pub type PointPair = (Point3<f64>, Point3<f64>);
 
-/// A set lying within `grow` of the convex hull of up to three parallels (circles about the
-/// axis, given by their meridian points `(rho, z)`): a revolved chord (two parallels), a
-/// revolved biarc's two chords (three), each with its sagittas and any further bound added
-/// to `grow` ([`hull_bound`]).
+/// A set lying within `grow` of the convex hull of up to `N` parallels (circles about the
+/// axis, given by their meridian points `(rho, z)`): a revolved piece's chords
+/// ([`PieceHull`]), a revolved biarc's two chords ([`NodeHull`]), with their sagittas and
+/// any further bound added to `grow` ([`hull_bound`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ParallelHull<const N: usize = 3> {
     points: [Point2<f64>; N],
@@ -372,9 +382,11 @@ impl Simplex {
     /// its faces, and the faces without the newest vertex were the previous simplex, whose
     /// closest point `v` the new vertex beats: `v . w < |v|^2`).
     fn closest_to_origin(&mut self) -> Vector3<f64> {
-        let mut best: Option<(f64, Vector3<f64>, u8, [f64; 4])> = None;
+        // The newest vertex alone is always a candidate (the first face tried).
         let newest = 1u8 << (self.len - 1);
-        for mask in (1u8..(1 << self.len)).filter(|m| m & newest != 0) {
+        let w = self.points[self.len - 1];
+        let mut best = (w.norm_squared(), w, newest, [1.0, 0.0, 0.0, 0.0]);
+        for mask in (newest + 1..(1 << self.len)).filter(|m| m & newest != 0) {
             let mut idx = [0usize; 4];
             let mut k = 0;
             for (i, slot) in (0..self.len).filter(|i| mask & (1 << i) != 0).zip(0..) {
@@ -385,14 +397,11 @@ impl Simplex {
                 continue;
             };
             let d = v.norm_squared();
-            if best.is_none_or(|(bd, _, _, _)| d < bd) {
-                best = Some((d, v, mask, weights));
+            if d < best.0 {
+                best = (d, v, mask, weights);
             }
         }
-        let Some((_, v, mask, weights)) = best else {
-            self.len = 4;
-            return Vector3::zeros();
-        };
+        let (_, v, mask, weights) = best;
         let mut kept = 0;
         for i in 0..self.len {
             if mask & (1 << i) != 0 {

@@ -23,7 +23,7 @@
 
 use super::binormal_kernel::{as_circle3, parallel_circle};
 use super::bounds::{shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK};
-use super::hull::{PieceHull, PointPair};
+use super::hull::{hull_bound_and_witness, PointPair};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{Patch, ProfileArc};
 use super::sweep::ParamCircle;
@@ -97,10 +97,10 @@ pub struct PatchLower {
     pub lower: f64,
     /// Points near the closest pair (A's frame), from which [`realised`] projects onto the
     /// patches; `None` when the bound stopped early at the caller's pruning level.
-    near: Option<(Point3<f64>, Point3<f64>)>,
-    /// The pieces' hulls' nearest points ([`ParallelHull::bound_and_witness`]), a second
+    near: Option<PointPair>,
+    /// The pieces' hulls' nearest points ([`super::hull::ParallelHull::bound_and_witness`]), a second
     /// start for [`realised`] (the only good one for two cones).
-    hull_near: Option<(Point3<f64>, Point3<f64>)>,
+    hull_near: Option<PointPair>,
 }
 
 impl PatchLower {
@@ -148,7 +148,7 @@ pub fn patch_lower(
     let mut early = None;
     if prune_at.is_finite() {
         let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
-        let (hull, witness) = hull_witness(a, b, pos_ab, &dir, prune_at, false);
+        let (hull, witness) = hull_bound_and_witness(&a.arc, &b.arc, pos_ab, &dir, prune_at, false);
         if hull >= prune_at {
             return pruned(hull);
         }
@@ -176,8 +176,14 @@ pub fn patch_lower(
                 // the pieces' mid points when the hulls overlap.
                 None => {
                     let (mid_a, mid_b) = (mid_point(a), pos_ab * mid_point(b));
-                    let (hull, witness) =
-                        hull_witness(a, b, pos_ab, &(mid_b - mid_a), prune_at, true);
+                    let (hull, witness) = hull_bound_and_witness(
+                        &a.arc,
+                        &b.arc,
+                        pos_ab,
+                        &(mid_b - mid_a),
+                        prune_at,
+                        true,
+                    );
                     let lower = disks.max(hull);
                     if lower >= prune_at {
                         return pruned(lower);
@@ -197,7 +203,8 @@ pub fn patch_lower(
     let (lower, hull_near) = if let Some((hull, witness)) = early {
         (lower.max(hull), witness)
     } else if lower < prune_at {
-        let (hull, witness) = hull_witness(a, b, pos_ab, &(near_b - near_a), prune_at, false);
+        let (hull, witness) =
+            hull_bound_and_witness(&a.arc, &b.arc, pos_ab, &(near_b - near_a), prune_at, false);
         (lower.max(hull), witness)
     } else {
         (lower, None)
@@ -206,22 +213,6 @@ pub fn patch_lower(
         lower,
         near: Some((near_a, near_b)),
         hull_near,
-    }
-}
-
-/// The pieces' hull bound ([`ParallelHull::bound_and_witness`]) and the hulls' nearest
-/// points; `-inf` and `None` for an arc of sweep above pi.
-fn hull_witness(
-    a: &Patch,
-    b: &Patch,
-    pos_ab: &Isometry3<f64>,
-    dir: &Vector3<f64>,
-    enough: f64,
-    converge: bool,
-) -> (f64, Option<PointPair>) {
-    match (PieceHull::of_piece(&a.arc), PieceHull::of_piece(&b.arc)) {
-        (Some(ha), Some(hb)) => ha.bound_and_witness(&hb, pos_ab, dir, enough, converge),
-        _ => (f64::NEG_INFINITY, None),
     }
 }
 

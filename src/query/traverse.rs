@@ -12,9 +12,9 @@
 //! pair popped again gets the exact solve and becomes resolved; popping a resolved pair
 //! means nothing can be refined further.
 
-use super::bounds::{node_pair_bound, BoundKind};
+use super::bounds::{node_pair_bound, sphere_bound, BoundKind};
 use super::leaf::{LeafPair, LeafResult};
-use super::tree::QueryTree;
+use super::tree::{Disk, QueryTree};
 use nalgebra::{Isometry3, Point3};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -165,18 +165,21 @@ fn node_key(
 }
 
 /// A leaf pair reached from the roots by always taking the child pair with the smaller
-/// sphere bound ([`super::bounds::sphere_bound`], closed form). A cold query gives it its
-/// stage-1 bounds first, so that the node keys of the traversal have a finite pruning level
-/// from the start: each key then stops at the first bound that reaches the level, and the
-/// solid-torus bound is skipped where it cannot ([`node_pair_bound`]). Before, about 65 of
-/// a query's 75 node keys were computed in full while the upper bound was still infinite.
-/// Measured (`query_cost --poses 100`, eps 1e-4): pawn-cup 102 -> 72 us, cup-bottle 112 ->
-/// 98 us, pawn-pawn 50 -> 42 us.
+/// `key` of the two nodes' disks.
+///
+/// A cold query dives along the sphere bound ([`sphere_bound`], closed form) and gives the
+/// leaf pair its stage-1 bounds first, so that the node keys of the traversal have a finite
+/// pruning level from the start: each key then stops at the first bound that reaches the
+/// level, and the solid-torus bound is skipped where it cannot ([`node_pair_bound`]).
+/// Before, about 65 of a query's 75 node keys were computed in full while the upper bound
+/// was still infinite. Measured (`query_cost --poses 100`, eps 1e-4): pawn-cup 102 -> 72
+/// us, cup-bottle 112 -> 98 us, pawn-pawn 50 -> 42 us. A query whose budget ran out before
+/// any leaf pair dives along the full node-pair bound for its anytime witnesses.
 fn dive(
     ta: &QueryTree,
     tb: &QueryTree,
-    pos_ab: &Isometry3<f64>,
     stats: &mut TraversalStats,
+    key: impl Fn(&Disk, &Disk) -> f64,
 ) -> (u32, u32) {
     let (mut a, mut b) = (ta.root, tb.root);
     loop {
@@ -185,19 +188,11 @@ fn dive(
             return (a, b);
         }
         let pairs = child_pairs(ta, tb, a, b);
-        let key = |(x, y): (u32, u32)| {
-            super::bounds::sphere_bound(
-                &ta.nodes[x as usize].bound,
-                &tb.nodes[y as usize].bound,
-                pos_ab,
-            )
-        };
+        let key_of =
+            |(x, y): (u32, u32)| key(&ta.nodes[x as usize].bound, &tb.nodes[y as usize].bound);
         stats.bound_tests += 2;
-        (a, b) = if key(pairs[0]) <= key(pairs[1]) {
-            pairs[0]
-        } else {
-            pairs[1]
-        };
+        let (k0, k1) = (key_of(pairs[0]), key_of(pairs[1]));
+        (a, b) = if k0 <= k1 { pairs[0] } else { pairs[1] };
     }
 }
 
@@ -303,7 +298,7 @@ pub fn traverse(
     // does not measure it twice.
     let mut warm_entry: Option<(u32, u32, f64, State)> = None;
     if warm.is_none() {
-        let (a, b) = dive(ta, tb, pos_ab, &mut stats);
+        let (a, b) = dive(ta, tb, &mut stats, |da, db| sphere_bound(da, db, pos_ab));
         let clock = Instant::now();
         let staged = leaves.bounds(a, b, f64::INFINITY);
         stats.leaf_bounds_ns += clock.elapsed().as_nanos() as u64;
@@ -462,27 +457,9 @@ pub fn traverse(
         // The budget ran out before any leaf pair: measure one, reached by a greedy descent
         // along the smaller node-pair bound, so that an anytime answer always has a finite
         // upper bound and witness points (the lower bound is unchanged).
-        let (mut a, mut b) = (ta.root, tb.root);
-        loop {
-            let (na, nb) = (&ta.nodes[a as usize], &tb.nodes[b as usize]);
-            if na.is_leaf() && nb.is_leaf() {
-                break;
-            }
-            let pairs = child_pairs(ta, tb, a, b);
-            let mut bound = |(x, y): (u32, u32)| {
-                stats.bound_tests += 1;
-                node_pair_bound(
-                    &ta.nodes[x as usize].bound,
-                    &tb.nodes[y as usize].bound,
-                    pos_ab,
-                    opts.bound,
-                    f64::INFINITY,
-                    None,
-                )
-            };
-            let (b0, b1) = (bound(pairs[0]), bound(pairs[1]));
-            (a, b) = if b0 <= b1 { pairs[0] } else { pairs[1] };
-        }
+        let (a, b) = dive(ta, tb, &mut stats, |da, db| {
+            node_pair_bound(da, db, pos_ab, opts.bound, f64::INFINITY, None)
+        });
         evaluate(a, b, f64::NEG_INFINITY, State::Open, &mut out, &mut stats);
     }
     out.lower = lower.min(pruned_min).min(out.upper).max(0.0);
