@@ -18,7 +18,7 @@ use super::bounds::hull_bound_until;
 use super::certify::{patch_lower_bound, CERTIFY_MAX_PAIRS};
 use super::containment::point_in_solid;
 use super::patch::Patch;
-use super::patch_bound::{patch_lower, realised, CoreMemo, PatchBounds, PatchLower};
+use super::patch_bound::{patch_lower, patch_upper, realised, CoreMemo, PatchBounds, PatchLower};
 use super::patch_distance::{patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions};
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
@@ -197,6 +197,22 @@ impl<'q> LeafPair<'q> {
             }
         }
         Some(r)
+    }
+
+    /// A realised upper bound of the leaves' patch distance alone ([`patch_upper`] of every
+    /// patch pair): the cold query's first leaf pair, whose lower bound would be loose
+    /// without a level and is not used. `lower` is `-inf` and the result never complete.
+    pub fn upper(&mut self, na: u32, nb: u32) -> LeafResult {
+        let mut r = LeafResult::empty();
+        r.lower = f64::NEG_INFINITY;
+        r.complete = false;
+        for (ia, ib) in self.patch_ranges(na, nb) {
+            let (pa, pb) = self.patches(ia, ib);
+            r.patch_bounds += 1;
+            let b = patch_upper(pa, pb, self.pos_ab, &mut self.cores);
+            r.offer(b.upper, b.point_a, b.point_b);
+        }
+        r
     }
 
     /// Stage 1b, for a leaf pair popped again with its stage-1 key: a sharper lower bound
