@@ -26,7 +26,7 @@
 use super::bounds::BOUND_SLACK;
 use super::patch::ProfileArc;
 use crate::num::norm2;
-use nalgebra::{Isometry3, Matrix2, Matrix3, Point2, Point3, Vector2, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point2, Point3, Vector2, Vector3};
 
 /// Support points computed at most per bound. The hulls are smooth (circles) where the
 /// iteration converges linearly; 24 steps reach [`GAP_REL`] on the measured leaf pairs,
@@ -381,94 +381,114 @@ impl Simplex {
     /// positive (the closest point of a polytope lies in the relative interior of one of
     /// its faces, and the faces without the newest vertex were the previous simplex, whose
     /// closest point `v` the new vertex beats: `v . w < |v|^2`).
+    ///
+    /// All faces share the newest vertex `p0` as origin of their edges `e_i = p_i - p0`,
+    /// so the edges' Gram matrix and `e_i . p0` are computed once and each face solves its
+    /// own 1x1, 2x2 or 3x3 block by Cramer's rule (the previous form solved every face
+    /// from scratch with a general inverse: 15% of a query's time).
     fn closest_to_origin(&mut self) -> Vector3<f64> {
-        // The newest vertex alone is always a candidate (the first face tried).
-        let newest = 1u8 << (self.len - 1);
-        let w = self.points[self.len - 1];
-        let mut best = (w.norm_squared(), w, newest, [1.0, 0.0, 0.0, 0.0]);
-        for mask in (newest + 1..(1 << self.len)).filter(|m| m & newest != 0) {
-            let mut idx = [0usize; 4];
-            let mut k = 0;
-            for (i, slot) in (0..self.len).filter(|i| mask & (1 << i) != 0).zip(0..) {
-                idx[slot] = i;
-                k += 1;
-            }
-            let Some((v, weights)) = face_closest(&self.points, &idx[..k]) else {
-                continue;
-            };
-            let d = v.norm_squared();
-            if d < best.0 {
-                best = (d, v, mask, weights);
+        let others = self.len - 1;
+        let p0 = self.points[others];
+        let pair0 = self.pairs[others];
+        let mut e = [Vector3::zeros(); 3];
+        let mut b = [0.0; 3];
+        let mut g = [[0.0; 3]; 3];
+        for i in 0..others {
+            e[i] = self.points[i] - p0;
+            b[i] = e[i].dot(&p0);
+            for j in 0..=i {
+                g[i][j] = e[i].dot(&e[j]);
+                g[j][i] = g[i][j];
             }
         }
-        let (_, v, mask, weights) = best;
-        let mut kept = 0;
-        for i in 0..self.len {
+        // The newest vertex alone is always a candidate.
+        let mut best = (p0.norm_squared(), p0, 0u8, [0.0; 3]);
+        for mask in 1u8..(1 << others) {
+            let mut idx = [0usize; 3];
+            let mut k = 0;
+            for i in (0..others).filter(|i| mask & (1 << i) != 0) {
+                idx[k] = i;
+                k += 1;
+            }
+            let Some(mu) = face_weights(&g, &b, &idx[..k]) else {
+                continue;
+            };
+            let v = (0..k).fold(p0, |v, j| v + e[idx[j]] * mu[j]);
+            let d = v.norm_squared();
+            if d < best.0 {
+                best = (d, v, mask, mu);
+            }
+        }
+        let (_, v, mask, mu) = best;
+        let (mut kept, mut sum) = (0, 0.0);
+        for i in 0..others {
             if mask & (1 << i) != 0 {
                 self.points[kept] = self.points[i];
                 self.pairs[kept] = self.pairs[i];
-                self.weights[kept] = weights[kept];
+                self.weights[kept] = mu[kept];
+                sum += mu[kept];
                 kept += 1;
             }
         }
-        self.len = kept;
+        self.points[kept] = p0;
+        self.pairs[kept] = pair0;
+        self.weights[kept] = 1.0 - sum;
+        self.len = kept + 1;
         v
     }
 }
 
-/// The point of the affine hull of `points[idx]` closest to the origin, with its barycentric
-/// coordinates (in the order of `idx`), when it lies inside their convex hull (all
-/// coordinates positive), else `None` (also for a degenerate face, whose lower-dimensional
-/// faces are tried separately).
-fn face_closest(points: &[Vector3<f64>; 4], idx: &[usize]) -> Option<(Vector3<f64>, [f64; 4])> {
-    let p0 = points[idx[0]];
-    let e = |j: usize| points[idx[j]] - p0;
-    // Minimise |p0 + sum mu_j e_j|: the Gram system G mu = -E^T p0.
-    let (mu, m): ([f64; 3], usize) = match idx.len() {
-        1 => return Some((p0, [1.0, 0.0, 0.0, 0.0])),
-        2 => {
-            let e1 = e(1);
-            let g = e1.norm_squared();
-            if g <= 0.0 {
+/// Barycentric weights `mu` of the face `p0 + span(e[idx])` at its point closest to the
+/// origin, from the edges' Gram matrix `g` and `b_i = e_i . p0` (the system `G mu = -b`,
+/// Cramer's rule), when that point lies inside the face (every `mu_j > 0` and
+/// `sum mu < 1`, the newest vertex's weight); `None` otherwise, also for a degenerate face
+/// (determinant at most 1e-12 of the diagonal's product), whose smaller faces are tried
+/// separately.
+fn face_weights(g: &[[f64; 3]; 3], b: &[f64; 3], idx: &[usize]) -> Option<[f64; 3]> {
+    let gg = |r: usize, c: usize| g[idx[r]][idx[c]];
+    let bb = |r: usize| b[idx[r]];
+    let mu = match idx.len() {
+        1 => {
+            let g00 = gg(0, 0);
+            if g00 <= 0.0 {
                 return None;
             }
-            ([-e1.dot(&p0) / g, 0.0, 0.0], 1)
+            [-bb(0) / g00, 0.0, 0.0]
         }
-        3 => {
-            let (e1, e2) = (e(1), e(2));
-            let g = Matrix2::new(
-                e1.norm_squared(),
-                e1.dot(&e2),
-                e1.dot(&e2),
-                e2.norm_squared(),
-            );
-            let det = g.determinant();
-            if det <= 1e-12 * g[(0, 0)] * g[(1, 1)] {
+        2 => {
+            let (g00, g01, g11) = (gg(0, 0), gg(0, 1), gg(1, 1));
+            let det = g00 * g11 - g01 * g01;
+            if det <= 1e-12 * g00 * g11 {
                 return None;
             }
-            let x = g.try_inverse()? * Vector2::new(-e1.dot(&p0), -e2.dot(&p0));
-            ([x.x, x.y, 0.0], 2)
+            let (b0, b1) = (bb(0), bb(1));
+            [
+                (g01 * b1 - g11 * b0) / det,
+                (g01 * b0 - g00 * b1) / det,
+                0.0,
+            ]
         }
         _ => {
-            let (e1, e2, e3) = (e(1), e(2), e(3));
-            let m3 = Matrix3::from_columns(&[e1, e2, e3]);
-            let g = m3.transpose() * m3;
-            let det = g.determinant();
-            if det <= 1e-12 * g[(0, 0)] * g[(1, 1)] * g[(2, 2)] {
+            let m = Matrix3::from_fn(gg);
+            let det = m.determinant();
+            if det <= 1e-12 * m[(0, 0)] * m[(1, 1)] * m[(2, 2)] {
                 return None;
             }
-            let x = g.try_inverse()? * (-(m3.transpose() * p0));
-            ([x.x, x.y, x.z], 3)
+            let rhs = -Vector3::new(bb(0), bb(1), bb(2));
+            // Cramer's rule: each weight is the determinant with its column replaced.
+            let col = |j: usize| {
+                let mut mj = m;
+                mj.set_column(j, &rhs);
+                mj.determinant() / det
+            };
+            [col(0), col(1), col(2)]
         }
     };
-    let mu = &mu[..m];
-    let l0 = 1.0 - mu.iter().sum::<f64>();
-    if l0 <= 0.0 || mu.iter().any(|&x| x <= 0.0) {
+    let mu_sum: f64 = mu.iter().sum();
+    if mu[..idx.len()].iter().any(|&x| x <= 0.0) || mu_sum >= 1.0 {
         return None;
     }
-    let mut weights = [l0, 0.0, 0.0, 0.0];
-    weights[1..=m].copy_from_slice(mu);
-    Some(((1..=m).fold(p0, |v, j| v + e(j) * mu[j - 1]), weights))
+    Some(mu)
 }
 
 #[cfg(test)]
