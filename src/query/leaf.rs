@@ -109,10 +109,6 @@ pub struct LeafPair<'q> {
     pub tb: &'q QueryTree,
     pub pos_ab: &'q Isometry3<f64>,
     pub pos_ba: Isometry3<f64>,
-    /// The trees' orientations ([`QueryTree::orientation`]), computed on the first
-    /// interpenetration check: most queries never need them, and each costs a pass over
-    /// the profile chain.
-    orientations: std::cell::OnceCell<(f64, f64)>,
     /// Absolute settle threshold ([`SETTLE_REL`] times the configuration scale).
     settle: f64,
     memo: BoundaryMemo,
@@ -144,7 +140,6 @@ impl<'q> LeafPair<'q> {
             tb,
             pos_ab,
             pos_ba: pos_ab.inverse(),
-            orientations: std::cell::OnceCell::new(),
             settle: settle_threshold(scale, ta.eps + tb.eps),
             memo: BoundaryMemo::default(),
             cores: CoreMemo::default(),
@@ -364,9 +359,7 @@ impl<'q> LeafPair<'q> {
         r: &mut LeafResult,
     ) {
         let w = q - p;
-        let (orient_a, orient_b) = *self
-            .orientations
-            .get_or_init(|| (self.ta.orientation(), self.tb.orientation()));
+        let (orient_a, orient_b) = (self.ta.orientation(), self.tb.orientation());
         let n_a = outward(self.ta, pa, orient_a, p);
         let q_b = self.pos_ba * q;
         let n_b = self.pos_ab.rotation * outward(self.tb, pb, orient_b, &q_b);
