@@ -299,14 +299,16 @@ fn hull_separation<const N: usize, const M: usize>(
     cap: usize,
     give_up: bool,
 ) -> (f64, Option<PointPair>) {
-    let rot_ba = pos_ab.rotation.inverse();
+    // The rotation as a matrix once: each step rotates a direction and a point (a matrix
+    // product is cheaper than the quaternion's).
+    let rot_ab = pos_ab.rotation.to_rotation_matrix();
     let t = pos_ab.translation.vector;
     // For unit `n`: the bound `-h_B(-n) - h_A(n)` and the point of D = B - A that attains
     // min n . z (A's frame).
     let lowest = |n: &Vector3<f64>| {
         let (va, pa) = a.support(n);
-        let (vb, qb) = b.support(&(rot_ba * -n));
-        let qb = pos_ab * qb;
+        let (vb, qb) = b.support(&-rot_ab.inverse_transform_vector(n));
+        let qb = rot_ab * qb + t;
         let lower = -(vb - n.dot(&t)) - va;
         (lower, qb - pa, (pa, qb))
     };
