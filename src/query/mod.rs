@@ -10,7 +10,7 @@
 //! | step | where | measured cost (per pair, 2-core EPYC) | what it gives |
 //! | --- | --- | --- | --- |
 //! | closed form | [`offset`] | one core distance, ~0.7 us per query | the whole answer when both solids are balls or solid tori (one circle per profile); no traversal |
-//! | first leaf (cold query) | [`traverse`] | a dive along sphere bounds and one leaf pair's stage-1 bounds | a finite upper bound before any node key, so every key can stop at the pruning level |
+//! | first leaf (cold query) | [`traverse`], [`leaf`] | a dive along sphere bounds and one leaf pair's realised upper bound (3-4 us: the arcs' tori's near points or a 3-step hull witness, projected; its stage-1 bounds without a level cost 12-19 us and were never used) | a finite upper bound before any node key, so every key can stop at the pruning level |
 //! | node-pair bound | [`bounds`] | 0.1 us (spheres), then the nodes' hull bound ([`hull`], a few support points), then ~0.4 us for the solid-torus circle minimum, skipped when two points of the circles show it cannot reach the level | a valid lower bound; prunes most pairs |
 //! | leaf stage 1 | [`leaf`], [`patch_bound`] | ~1-5 us per patch pair (closed-form sphere, shell and slab bounds; the arcs' tori or a circle/cone solve; the pieces' converged hull bound) | lower bound and a realised upper bound (started from the tori's or the hulls' nearest points); settles the pair when they meet |
 //! | stage 1, split | [`leaf`], [`certify`] | up to 8 sub-piece bounds (~1-2 us each) | a positive lower bound for a pair whose tori and hulls overlap, instead of "may intersect" |
