@@ -18,7 +18,9 @@ use super::bounds::hull_bound_until;
 use super::certify::{patch_lower_bound, CERTIFY_MAX_PAIRS};
 use super::containment::point_in_solid;
 use super::patch::Patch;
-use super::patch_bound::{patch_lower, patch_upper, realised, CoreMemo, PatchBounds, PatchLower};
+use super::patch_bound::{
+    patch_lower, patch_upper, polish, realised, CoreMemo, PatchBounds, PatchLower,
+};
 use super::patch_distance::{patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions};
 use super::tree::QueryTree;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
@@ -53,6 +55,11 @@ pub fn settle_threshold(scale: f64, eps_sum: f64) -> f64 {
 /// the former 24 and 32 on the paper-model pairs (cup-bottle 1e-5: 401 -> 332 us), and
 /// larger budgets (48/64) slower still: the extra cells rarely spare an exact solve.
 pub const STAGE1_SPLIT_PAIRS: usize = 8;
+
+/// [`LeafPair::bounds`] polishes its realised pair until an alternation gains less than
+/// this fraction of the leaves' eps: the query's tolerance is a few eps, so a hundredth
+/// of one is far below what it can resolve.
+pub const POLISH_GAIN: f64 = 0.01;
 
 /// Sub-piece bounds per patch pair of [`LeafPair::tightened_lower`] (see
 /// [`STAGE1_SPLIT_PAIRS`]).
@@ -158,9 +165,20 @@ impl<'q> LeafPair<'q> {
 
     /// Stage 1: bounds of every patch pair. Pairs whose lower bound reaches `prune_at`
     /// contribute only that bound. Returns `None` when some pair may intersect (lower bound
-    /// `<= 0`): then only [`LeafPair::exact`] can decide.
-    pub fn bounds(&mut self, na: u32, nb: u32, prune_at: f64) -> Option<LeafResult> {
+    /// `<= 0`): then only [`LeafPair::exact`] can decide. When the leaves' realised distance
+    /// is below `improve_below` (it would lower the query's upper bound), its pair is
+    /// polished ([`polish`], to a hundredth of the leaves' eps): the upper bound then holds
+    /// the patch distance closely enough for the query to stop without solving the leaf pair
+    /// exactly for it.
+    pub fn bounds(
+        &mut self,
+        na: u32,
+        nb: u32,
+        prune_at: f64,
+        improve_below: f64,
+    ) -> Option<LeafResult> {
         let mut r = LeafResult::empty();
+        let mut best_pair = None;
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
             r.patch_bounds += 1;
@@ -186,26 +204,46 @@ impl<'q> LeafPair<'q> {
             }
             let b = realised(pa, pb, self.pos_ab, &lower);
             r.lower = r.lower.min(b.lower);
+            if b.upper < r.d {
+                best_pair = Some((pa, pb));
+            }
             r.offer(b.upper, b.point_a, b.point_b);
             if !self.settled(&b) {
                 r.complete = false;
             }
         }
+        if let Some((pa, pb)) = best_pair.filter(|_| r.d < improve_below) {
+            let eps = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
+            let min_gain = POLISH_GAIN * eps.max(self.settle);
+            let (p, q, d) = polish(pa, pb, self.pos_ab, (r.pa, r.pb), min_gain);
+            r.offer(d, p, q);
+        }
         Some(r)
     }
 
     /// A realised upper bound of the leaves' patch distance alone ([`patch_upper`] of every
-    /// patch pair): the cold query's first leaf pair, whose lower bound would be loose
-    /// without a level and is not used. `lower` is `-inf` and the result never complete.
+    /// patch pair, the best one then polished, [`polish`]): the cold query's first leaf pair,
+    /// whose lower bound would be loose without a level and is not used. `lower` is `-inf`
+    /// and the result never complete.
     pub fn upper(&mut self, na: u32, nb: u32) -> LeafResult {
         let mut r = LeafResult::empty();
         r.lower = f64::NEG_INFINITY;
         r.complete = false;
+        let mut best_pair = None;
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
             r.patch_bounds += 1;
             let b = patch_upper(pa, pb, self.pos_ab, &mut self.cores);
+            if b.upper < r.d {
+                best_pair = Some((pa, pb));
+            }
             r.offer(b.upper, b.point_a, b.point_b);
+        }
+        if let Some((pa, pb)) = best_pair {
+            let eps = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
+            let min_gain = POLISH_GAIN * eps.max(self.settle);
+            let (p, q, d) = polish(pa, pb, self.pos_ab, (r.pa, r.pb), min_gain);
+            r.offer(d, p, q);
         }
         r
     }
@@ -420,7 +458,7 @@ mod tests {
                     }
                     let d = exact.d;
                     assert!(exact.lower <= d + 1e-12, "exact {} > {d}", exact.lower);
-                    if let Some(r) = pair.bounds(na, nb, f64::INFINITY) {
+                    if let Some(r) = pair.bounds(na, nb, f64::INFINITY, f64::INFINITY) {
                         assert!(r.lower <= d + 1e-12, "stage 1 {} > {d}", r.lower);
                     }
                     for level in [0.5 * d, d, 1.5 * d, 4.0 * d, f64::INFINITY] {

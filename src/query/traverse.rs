@@ -335,7 +335,7 @@ pub fn traverse(
         let prune_at = out.upper - tol + e;
         let clock = Instant::now();
         let staged = match from {
-            State::Open => leaves.bounds(a, b, prune_at),
+            State::Open => leaves.bounds(a, b, prune_at, out.upper - e),
             _ => None,
         };
         if from == State::Bounded {
