@@ -27,15 +27,19 @@
 //! lower bound still holds the query's lower bound; on the exact torus that never happens.
 //!
 //! **Where the time goes now** (close poses, eps 1e-4, `query_cost --poses 100`, medians
-//! 40-96 us on pawn-pawn, pawn-cup, cup-bottle, table-lightmill): stage-1 leaf bounds take
-//! 55-70% of the time (the dive's first leaf included), exact leaf solves 0-25% (0.0-0.7
-//! patch pairs per query), node bounds and the queue the rest. Certified circle/circle
-//! minima (~0.4 us each: stage-1 disk tori, sub-piece cells, the node tori that can still
-//! prune) and the hull iterations are most of it. Before the dive, about 65 of a query's 75
-//! node keys were computed in full while the upper bound was still infinite, and the node
-//! tori were 39% of all the time. What made the exact stage rare (exact patch solves per
-//! query at eps 1e-4: pawn-cup 2.9 -> 0.4, cup-bottle 4.7 -> 0.7, table-lightmill 3.9 ->
-//! 0.0):
+//! 26-46 us on pawn-pawn, pawn-cup, cup-bottle, table-lightmill; perf over the timed
+//! queries of the four pairs): stage-1 leaf bounds 36% of the time, node keys 21% (spheres
+//! 7%, node tori 7%, node hulls most of the rest), the cold query's first leaf 10%, stage
+//! 1b 9% and the exact stage 11% (0.0-0.3 patch pairs per query). Across the stages, hull
+//! iterations take a third (support points 13%, the simplex step 12%), certified
+//! circle/circle minima 10%, circle/cone solves 8% and closest-point projections
+//! (realised pairs, [`patch_bound::polish`]) 10%. What is left is spread over primitives
+//! that each cost 0.02-1 us and are each called a few to a hundred times per query; no
+//! single step holds more than a seventh of the time. Before the dive, about 65 of a
+//! query's 75 node keys were computed in full while the upper bound was still infinite, and
+//! the node tori were 39% of all the time. What made the exact stage rare (exact patch
+//! solves per query at eps 1e-4: pawn-cup 2.9 -> 0.2, cup-bottle 4.7 -> 0.3,
+//! table-lightmill 3.9 -> 0.0):
 //!
 //! * the hull bound of [`hull`] iterates its direction to convergence (support points on
 //!   the hulls' Minkowski difference, stopped at the caller's level or once the level is
@@ -49,6 +53,10 @@
 //!   the settle test see the true distance;
 //! * before a pair's exact solve, its hull bound is searched to the leaf's best distance so
 //!   far, below the pruning level the cheap bound stopped at.
+//! * the realised pair that would lower the query's upper bound is polished by
+//!   alternating closest points: near the cup's waist (an arc of radius 5-11 bulging
+//!   towards the axis) one alternation left it 1e-4 to 1e-3 long, and the leaf pair that
+//!   held the minimum was tightened and solved exactly for its upper bound alone.
 //!
 //! Earlier (before the hull bounds): 3-9 leaf pairs per query went to the exact solve,
 //! 80% of them as "may intersect" only because a straight piece's or a wide arc's solid
@@ -57,7 +65,12 @@
 //! pairs a query evaluates by 2.5-3x.
 //!
 //! Tried and dropped (each measured with `query_cost --poses 100`, same counters or within
-//! the machine's 25% noise): a closed-form threshold test of the circle/circle bounds
+//! the machine's 25% noise): cutting arcs that bulge towards the axis (a convex hull cannot
+//! follow them) into three for the stage-1 hull bound (the pairs it could prune were rare:
+//! those leaf pairs mostly hold the minimum); starting a leaf pair's piece hulls from its
+//! previous patch pair's direction, or from the major circles' near points (same support
+//! points per bound); splitting both nodes of a pair (half the node pairs, same time); the
+//! arcs' tori's near points skipped in the first leaf's upper bound (same time); a closed-form threshold test of the circle/circle bounds
 //! against the pruning level (it proved the level in 3-7% of the calls); a cheaper
 //! circle/circle lower bound in front of the solver; a smooth-junction mode of the exact
 //! kernel (branch `exp/smooth-junctions`: skipping G1 junction parallels needs one eps per
