@@ -548,6 +548,25 @@ mod tests {
     use crate::query::patch_distance::tests::{random_piece, random_pose, reference, Rng};
     use std::f64::consts::TAU;
 
+    /// A realised upper bound: `pa` lies on patch `a`, `pb` on patch `b` (placed by `pose`),
+    /// within 1e-12, and `upper` is their distance.
+    fn assert_realised(
+        a: &Patch,
+        b: &Patch,
+        pose: &Isometry3<f64>,
+        (pa, pb): (&Point3<f64>, &Point3<f64>),
+        upper: f64,
+        case: usize,
+    ) {
+        let on_a = a.point_distance(pa).0;
+        let on_b = b.point_distance(&pose.inverse_transform_point(pb)).0;
+        assert!(
+            on_a <= 1e-12 && on_b <= 1e-12,
+            "case {case}: off the patches {on_a} {on_b}"
+        );
+        assert!(((pa - pb).norm() - upper).abs() <= 1e-15, "case {case}");
+    }
+
     /// Stage-1 bounds bracket the exact patch distance and the independent reference (a
     /// grid over both patches refined by pattern search: a realised distance, so an upper
     /// estimate of the truth): `lower <= exact <= upper`, `lower <= reference`, and the
@@ -582,16 +601,14 @@ mod tests {
                 "case {i}: lower {} > reference {r}",
                 bounds.lower
             );
-            // Realised: each point lies on its patch.
-            let on_a = a.point_distance(&bounds.point_a).0;
-            let on_b = b
-                .point_distance(&pose.inverse_transform_point(&bounds.point_b))
-                .0;
-            assert!(
-                on_a <= 1e-12 && on_b <= 1e-12,
-                "case {i}: off the patches {on_a} {on_b}"
+            assert_realised(
+                &a,
+                &b,
+                &pose,
+                (&bounds.point_a, &bounds.point_b),
+                bounds.upper,
+                i,
             );
-            assert!(((bounds.point_a - bounds.point_b).norm() - bounds.upper).abs() <= 1e-15);
             if bounds.upper - bounds.lower <= 1e-9 {
                 settled += 1;
             }
@@ -620,15 +637,7 @@ mod tests {
                 "case {i}: upper {} < exact {exact}",
                 up.upper
             );
-            let on_a = a.point_distance(&up.point_a).0;
-            let on_b = b
-                .point_distance(&pose.inverse_transform_point(&up.point_b))
-                .0;
-            assert!(
-                on_a <= 1e-12 && on_b <= 1e-12,
-                "case {i}: off the patches {on_a} {on_b}"
-            );
-            assert!(((up.point_a - up.point_b).norm() - up.upper).abs() <= 1e-15);
+            assert_realised(&a, &b, &pose, (&up.point_a, &up.point_b), up.upper, i);
             if exact > 0.05 {
                 separated += 1;
                 if up.upper <= 1.1 * exact {
@@ -660,13 +669,7 @@ mod tests {
             let slack = 1e-10 * (1.0 + pose.translation.vector.norm());
             assert!(d <= start.upper, "case {i}: {d} > {}", start.upper);
             assert!(d >= exact - slack, "case {i}: {d} < exact {exact}");
-            assert!(((p - q).norm() - d).abs() <= 1e-15);
-            let on_a = a.point_distance(&p).0;
-            let on_b = b.point_distance(&pose.inverse_transform_point(&q)).0;
-            assert!(
-                on_a <= 1e-12 && on_b <= 1e-12,
-                "case {i}: off {on_a} {on_b}"
-            );
+            assert_realised(&a, &b, &pose, (&p, &q), d, i);
             if exact > 0.05 {
                 separated += 1;
                 before += usize::from(start.upper - exact <= 1e-6 * exact);
