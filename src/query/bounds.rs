@@ -37,7 +37,9 @@ pub const BOUND_SLACK: f64 = 1e-11;
 pub enum BoundKind {
     /// Bounding spheres only.
     Sphere,
-    /// Sphere tests, then the solid-torus bound when the spheres do not prune.
+    /// Sphere tests, then the hull and solid-torus bounds when the spheres do not prune
+    /// (node pairs with a node over several spirals keep the sphere bound alone,
+    /// [`super::traverse`]'s node keys).
     #[default]
     Torus,
 }

@@ -57,8 +57,9 @@ pub fn settle_threshold(scale: f64, eps_sum: f64) -> f64 {
 pub const STAGE1_SPLIT_PAIRS: usize = 8;
 
 /// [`LeafPair::bounds`] polishes its realised pair until an alternation gains less than
-/// this fraction of the leaves' eps: the query's tolerance is a few eps, so a hundredth
-/// of one is far below what it can resolve.
+/// this fraction of the leaves' eps (or of the settle threshold, [`settle_threshold`], for
+/// exact trees of eps 0): the query's tolerance is a few eps, so a hundredth of one is far
+/// below what it can resolve.
 pub const POLISH_GAIN: f64 = 0.01;
 
 /// Sub-piece bounds per patch pair of [`LeafPair::tightened_lower`] (see
@@ -166,8 +167,10 @@ impl<'q> LeafPair<'q> {
     /// Stage 1: bounds of every patch pair. Pairs whose lower bound reaches `prune_at`
     /// contribute only that bound. Returns `None` when some pair may intersect (lower bound
     /// `<= 0`): then only [`LeafPair::exact`] can decide. When the leaves' realised distance
-    /// is below `improve_below` (it would lower the query's upper bound), its pair is
-    /// polished ([`polish`], to a hundredth of the leaves' eps): the upper bound then holds
+    /// is below `improve_below` (it would lower the query's upper bound; not when it would
+    /// only move the reported value), its pair is polished ([`polish`], until a step gains
+    /// less than [`POLISH_GAIN`] of the leaves' eps or of the settle threshold, whichever is
+    /// larger): the upper bound then holds
     /// the patch distance closely enough for the query to stop without solving the leaf pair
     /// exactly for it.
     pub fn bounds(
@@ -458,9 +461,32 @@ mod tests {
                     }
                     let d = exact.d;
                     assert!(exact.lower <= d + 1e-12, "exact {} > {d}", exact.lower);
+                    // Realised upper bounds (stage 1 polished, and the upper bound alone):
+                    // points on the leaves' patches, never below the certified distance.
+                    let on_leaves = |r: &LeafResult| {
+                        let off = |t: &QueryTree, n: u32, x: &Point3<f64>| {
+                            let node = &t.nodes[n as usize];
+                            (node.patch_start..node.patch_end)
+                                .map(|i| t.patches[i as usize].point_distance(x).0)
+                                .fold(f64::INFINITY, f64::min)
+                        };
+                        assert!(off(&a.tree, na, &r.pa) <= 1e-12, "off leaf A");
+                        assert!(off(&b.tree, nb, &pos.inverse_transform_point(&r.pb)) <= 1e-12);
+                        assert!(((r.pa - r.pb).norm() - r.d).abs() <= 1e-15);
+                        // Against the exact stage's certified lower bound: its own
+                        // realised distance may be a few 1e-10 above a polished pair's.
+                        assert!(
+                            r.d >= exact.lower - 1e-12,
+                            "realised {} < {}",
+                            r.d,
+                            exact.lower
+                        );
+                    };
                     if let Some(r) = pair.bounds(na, nb, f64::INFINITY, f64::INFINITY) {
                         assert!(r.lower <= d + 1e-12, "stage 1 {} > {d}", r.lower);
+                        on_leaves(&r);
                     }
+                    on_leaves(&pair.upper(na, nb));
                     for level in [0.5 * d, d, 1.5 * d, 4.0 * d, f64::INFINITY] {
                         let lower = pair.tightened_lower(na, nb, level);
                         assert!(lower <= d + 1e-12, "stage 1b at {level}: {lower} > {d}");

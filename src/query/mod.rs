@@ -70,8 +70,9 @@
 //! those leaf pairs mostly hold the minimum); starting a leaf pair's piece hulls from its
 //! previous patch pair's direction, or from the major circles' near points (same support
 //! points per bound); splitting both nodes of a pair (half the node pairs, same time); the
-//! arcs' tori's near points skipped in the first leaf's upper bound (same time); a closed-form threshold test of the circle/circle bounds
-//! against the pruning level (it proved the level in 3-7% of the calls); a cheaper
+//! arcs' tori's near points skipped in the first leaf's upper bound (same time); a
+//! closed-form threshold test of the circle/circle bounds against the pruning level (it
+//! proved the level in 3-7% of the calls); a cheaper
 //! circle/circle lower bound in front of the solver; a smooth-junction mode of the exact
 //! kernel (branch `exp/smooth-junctions`: skipping G1 junction parallels needs one eps per
 //! tree and trees at eps/4, oracle-clean, -15% to +10%); sub-piece splits before every

@@ -168,12 +168,9 @@ fn node_key(
     // around all of them, whose solid torus is about as fat as its sphere: such a pair's
     // key only orders the search, and the spheres do that. The check that skips a torus
     // that cannot reach the level cost more there than the few tori it let through saved
-    // (`query_cost --poses 100`, eps 1e-4: 2-4 more node pairs, 7-14% less time).
-    // (Trees built from leaves have no hulls at all; their inner nodes keep the tori.)
-    let over_spirals = |t: &QueryTree, n: u32| {
-        !t.nodes[n as usize].is_leaf() && t.hulls.get(n as usize).is_some_and(Option::is_none)
-    };
-    let kind = if over_spirals(ta, a) || over_spirals(tb, b) {
+    // (`query_cost --poses 100`, eps 1e-4: 2-4 more node pairs, 7-14% less time). Nodes
+    // inside a spiral keep the caller's kind.
+    let kind = if ta.over_spirals(a) || tb.over_spirals(b) {
         BoundKind::Sphere
     } else {
         kind
@@ -216,16 +213,15 @@ fn dive(
     }
 }
 
-/// Records a leaf pair's evaluation `r` (leaves' eps sum `e`) in the traversal's bounds and
-/// counters; returns the pair's new key (at least `key`) and state.
-fn record_leaf(
+/// Records a leaf pair's realised distance `r.d` (leaves' eps sum `e`) in the traversal's
+/// upper bound and witnesses, and its counters.
+fn record_upper(
     (a, b): (u32, u32),
-    key: f64,
     r: &LeafResult,
     e: f64,
     out: &mut SurfaceBounds,
     stats: &mut TraversalStats,
-) -> (f64, State) {
+) {
     stats.patch_bounds += r.patch_bounds;
     stats.patch_tests += r.patch_tests;
     stats.subdivided_pairs += r.subdivided_pairs;
@@ -238,6 +234,19 @@ fn record_leaf(
         out.point_b = r.pb;
         out.best_pair = Some((a, b));
     }
+}
+
+/// Records a leaf pair's evaluation `r` (leaves' eps sum `e`) in the traversal's bounds and
+/// counters ([`record_upper`]); returns the pair's new key (at least `key`) and state.
+fn record_leaf(
+    (a, b): (u32, u32),
+    key: f64,
+    r: &LeafResult,
+    e: f64,
+    out: &mut SurfaceBounds,
+    stats: &mut TraversalStats,
+) -> (f64, State) {
+    record_upper((a, b), r, e, out, stats);
     if let Some(p) = r.penetration {
         if out.penetration.is_none_or(|(_, _, m)| p.2 > m) {
             out.penetration = Some(p);
@@ -327,13 +336,10 @@ pub fn traverse(
         stats.leaf_bounds += 1;
         let e = ta.nodes[a as usize].eps + tb.nodes[b as usize].eps;
         // Only the upper bound: a lower bound without a level would be loose (nothing
-        // pruned), and the traversal reaches the pair again with a level if it matters.
-        record_leaf((a, b), f64::NEG_INFINITY, &r, e, &mut out, &mut stats);
-        if out.surfaces_meet {
-            out.lower = 0.0;
-            out.stats = stats;
-            return out;
-        }
+        // pruned), and the traversal reaches the pair again with a level if it matters. A
+        // realised distance of 0 does not end the query here: the pair's stage 1 and exact
+        // solve look for crossings and interpenetration when the traversal reaches it.
+        record_upper((a, b), &r, e, &mut out, &mut stats);
     }
     // Evaluates the leaf pair (a, b): stage 1 from `Open`, stage 2 from `Bounded`. Returns
     // the new key and state.

@@ -120,7 +120,9 @@ pub struct QueryTree {
     pub nodes: Vec<Node>,
     pub patches: Vec<Patch>,
     pub root: u32,
-    /// Profile pieces in order (for point-in-profile tests).
+    /// Profile pieces in order (for point-in-profile tests). A caller that changes it must
+    /// call [`QueryTree::index_chain`], which derives [`QueryTree::node_ends`] and the
+    /// orientation from it.
     pub chain: Vec<ProfileArc>,
     pub kind: ProfileKind,
     /// Largest leaf eps.
@@ -143,6 +145,10 @@ pub struct QueryTree {
     /// ([`super::bounds::ParallelHull::bound`]). `None` for nodes without a biarc (the upper
     /// level over the spirals, trees built from leaves) or with an arc above a half turn.
     pub hulls: Vec<Option<NodeHull>>,
+    /// Nodes from this index on form the upper level over the spirals of a biarc tree
+    /// (disks around several spirals, no biarc and no hull; [`QueryTree::from_biarc_tree`]);
+    /// `u32::MAX` for trees built from leaves.
+    upper_start: u32,
     /// [`QueryTree::orientation`] of the chain, computed at construction (interpenetration
     /// checks ask for it in every query that reaches an exact solve; a pass over the chain
     /// with nine sine/cosine pairs per piece was 1.5% of the query time at eps 1e-4).
@@ -169,6 +175,7 @@ impl QueryTree {
             node_ends: Vec::new(),
             offset: None,
             hulls: Vec::new(),
+            upper_start: u32::MAX,
             chain_orientation: 1.0,
         };
         t.target_eps = t.eps;
@@ -177,7 +184,6 @@ impl QueryTree {
         }
         t.index_chain();
         t.offset = detect(&t.chain, t.kind, t.eps);
-        t.chain_orientation = orientation_of(&t.chain);
         t
     }
 
@@ -238,6 +244,7 @@ impl QueryTree {
             node_ends: Vec::new(),
             offset: None,
             hulls: Vec::new(),
+            upper_start: u32::MAX,
             chain_orientation: 1.0,
         };
         let roots: Vec<u32> = bt
@@ -252,6 +259,7 @@ impl QueryTree {
             .map(|n| n.eps)
             .fold(0.0, f64::max);
         t.target_eps = t.eps.max(bt.eps());
+        t.upper_start = t.nodes.len() as u32;
         if !roots.is_empty() {
             t.root = t.build_upper(&roots);
         }
@@ -259,13 +267,14 @@ impl QueryTree {
         t.hulls.resize(t.nodes.len(), None);
         t.index_chain();
         t.offset = detect(&t.chain, t.kind, t.eps);
-        t.chain_orientation = orientation_of(&t.chain);
         t
     }
 
     /// Fills [`QueryTree::node_ends`], or leaves it empty when the leaves' patches are not
     /// the chain's pieces in order, joined within `1e-9` of the coordinates.
+    /// Also computes the chain's orientation ([`QueryTree::orientation`]).
     pub fn index_chain(&mut self) {
+        self.chain_orientation = orientation_of(&self.chain);
         self.node_ends.clear();
         if self.chain.len() != self.patches.len() || self.root == NO_CHILD {
             return;
@@ -370,6 +379,12 @@ impl QueryTree {
             }
         }
         QueryTree::from_leaves(leaves, kind)
+    }
+
+    /// Whether node `n` is in the upper level over a biarc tree's spirals: its disk is around
+    /// several spirals, and it has no biarc and no hull.
+    pub fn over_spirals(&self, n: u32) -> bool {
+        n >= self.upper_start
     }
 
     /// Profile orientation: +1 when the region is to the left of the chain (counter-
