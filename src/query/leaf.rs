@@ -182,6 +182,7 @@ impl<'q> LeafPair<'q> {
     ) -> Option<LeafResult> {
         let mut r = LeafResult::empty();
         let mut best_pair = None;
+        let mut lowers: Vec<(PatchLower, u32, u32)> = Vec::with_capacity(4);
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
             r.patch_bounds += 1;
@@ -201,10 +202,18 @@ impl<'q> LeafPair<'q> {
                 }
                 lower.lower = split;
             }
-            if lower.lower >= prune_at {
+            lowers.push((lower, ia, ib));
+        }
+        // Realised pairs smallest bound first: a pair whose (positive) bound is not below
+        // the best realised distance so far can lower neither end of the leaf's interval,
+        // so it needs no realised pair and does not keep the leaf pair open.
+        lowers.sort_by(|x, y| x.0.lower.total_cmp(&y.0.lower));
+        for (lower, ia, ib) in lowers {
+            if lower.lower >= prune_at.min(r.d) {
                 r.lower = r.lower.min(lower.lower);
                 continue;
             }
+            let (pa, pb) = self.patches(ia, ib);
             let b = realised(pa, pb, self.pos_ab, &lower);
             r.lower = r.lower.min(b.lower);
             if b.upper < r.d {
