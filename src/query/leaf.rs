@@ -224,11 +224,8 @@ impl<'q> LeafPair<'q> {
                 r.complete = false;
             }
         }
-        if let Some((pa, pb)) = best_pair.filter(|_| r.d < improve_below) {
-            let eps = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
-            let min_gain = POLISH_GAIN * eps.max(self.settle);
-            let (p, q, d) = polish(pa, pb, self.pos_ab, (r.pa, r.pb), min_gain);
-            r.offer(d, p, q);
+        if let Some(pair) = best_pair.filter(|_| r.d < improve_below) {
+            self.polish_best((na, nb), pair, &mut r);
         }
         Some(r)
     }
@@ -259,11 +256,18 @@ impl<'q> LeafPair<'q> {
         r.patch_bounds += 1;
         let b = patch_upper(pa, pb, self.pos_ab, &mut self.cores);
         r.offer(b.upper, b.point_a, b.point_b);
+        self.polish_best((na, nb), (pa, pb), &mut r);
+        r
+    }
+
+    /// Polishes `r`'s realised pair, which lies on the patches `pa` and `pb` of the leaves
+    /// `na` and `nb` ([`polish`], until a step gains less than [`POLISH_GAIN`] of the leaves'
+    /// eps or of the settle threshold, whichever is larger), and offers the result.
+    fn polish_best(&self, (na, nb): (u32, u32), (pa, pb): (&Patch, &Patch), r: &mut LeafResult) {
         let eps = self.ta.nodes[na as usize].eps + self.tb.nodes[nb as usize].eps;
         let min_gain = POLISH_GAIN * eps.max(self.settle);
         let (p, q, d) = polish(pa, pb, self.pos_ab, (r.pa, r.pb), min_gain);
         r.offer(d, p, q);
-        r
     }
 
     /// Stage 1b, for a leaf pair popped again with its stage-1 key: a sharper lower bound

@@ -98,8 +98,9 @@ pub struct PatchLower {
     /// Points near the closest pair (A's frame), from which [`realised`] projects onto the
     /// patches; `None` when the bound stopped early at the caller's pruning level.
     near: Option<PointPair>,
-    /// The pieces' hulls' nearest points ([`super::hull::ParallelHull::bound_and_witness`]), a second
-    /// start for [`realised`] (the only good one for two cones).
+    /// The pieces' hulls' nearest points
+    /// ([`super::hull::ParallelHull::bound_and_witness`]), a second start for [`realised`]
+    /// (the only good one for two cones).
     hull_near: Option<PointPair>,
 }
 
@@ -175,24 +176,12 @@ pub fn patch_lower(
                 // each other's convex side) and its nearest points as the realised start;
                 // the pieces' mid points when the hulls overlap.
                 None => {
-                    let (mid_a, mid_b) = (mid_point(a), pos_ab * mid_point(b));
-                    let (hull, witness) = hull_bound_and_witness(
-                        &a.arc,
-                        &b.arc,
-                        pos_ab,
-                        &(mid_b - mid_a),
-                        prune_at,
-                        true,
-                    );
-                    let lower = disks.max(hull);
-                    if lower >= prune_at {
-                        return pruned(lower);
+                    let mut starts = mid_and_hull_starts(a, b, pos_ab, prune_at, true);
+                    starts.lower = disks.max(starts.lower);
+                    if starts.lower >= prune_at {
+                        return pruned(starts.lower);
                     }
-                    return PatchLower {
-                        lower,
-                        near: Some((mid_a, mid_b)),
-                        hull_near: witness,
-                    };
+                    return starts;
                 }
             }
         }
@@ -235,7 +224,7 @@ pub fn polish(
     min_gain: f64,
 ) -> (Point3<f64>, Point3<f64>, f64) {
     let on_a = |x: &Point3<f64>| a.point_distance(x).1;
-    let on_b = |x: &Point3<f64>| pos_ab * b.point_distance(&pos_ab.inverse_transform_point(x)).1;
+    let on_b = |x: &Point3<f64>| closest_on_placed(b, pos_ab, x);
     let mut best = (pa, pb, (pa - pb).norm());
     for _ in 0..POLISH_STEPS {
         let q = on_b(&best.0);
@@ -273,19 +262,33 @@ pub fn patch_upper(
             near: Some((t.near_a, t.near_b)),
             hull_near: None,
         },
-        None => {
-            let (mid_a, mid_b) = (mid_point(a), pos_ab * mid_point(b));
-            let dir = mid_b - mid_a;
-            let (_, witness) =
-                hull_bound_and_witness(&a.arc, &b.arc, pos_ab, &dir, f64::INFINITY, false);
-            PatchLower {
-                lower: f64::NEG_INFINITY,
-                near: Some((mid_a, mid_b)),
-                hull_near: witness,
-            }
-        }
+        None => PatchLower {
+            lower: f64::NEG_INFINITY,
+            ..mid_and_hull_starts(a, b, pos_ab, f64::INFINITY, false)
+        },
     };
     realised(a, b, pos_ab, &starts)
+}
+
+/// Starts for a realised pair of two pieces without near points of their own (two cones):
+/// the pieces' mid points, and the hulls' nearest points from the hull iteration started
+/// along them ([`hull_bound_and_witness`] with `enough` and `converge`), whose bound is
+/// `lower`.
+fn mid_and_hull_starts(
+    a: &Patch,
+    b: &Patch,
+    pos_ab: &Isometry3<f64>,
+    enough: f64,
+    converge: bool,
+) -> PatchLower {
+    let (mid_a, mid_b) = (mid_point(a), pos_ab * mid_point(b));
+    let (lower, hull_near) =
+        hull_bound_and_witness(&a.arc, &b.arc, pos_ab, &(mid_b - mid_a), enough, converge);
+    PatchLower {
+        lower,
+        near: Some((mid_a, mid_b)),
+        hull_near,
+    }
 }
 
 /// The mid point of a patch's piece at revolution angle 0 (the patch's frame).
@@ -513,6 +516,12 @@ fn circle_parallel_distance(circle: &ParamCircle, e: Point2<f64>) -> (f64, f64) 
     }
 }
 
+/// The closest point to `x` (A's frame) of patch `b` placed by `pos_ab`, in A's frame: the
+/// projection onto B of [`realised`] and [`polish`] (A's is [`Patch::point_distance`]).
+fn closest_on_placed(b: &Patch, pos_ab: &Isometry3<f64>, x: &Point3<f64>) -> Point3<f64> {
+    pos_ab * b.point_distance(&pos_ab.inverse_transform_point(x)).1
+}
+
 /// Two points on the patches near `xa` (A's frame, near A) and `xb` (A's frame, near B):
 /// each projected onto its patch, then each patch's point projected against the other's,
 /// keeping the closest of the realised pairs.
@@ -524,7 +533,7 @@ fn realise(
     xb: Point3<f64>,
 ) -> (Point3<f64>, Point3<f64>) {
     let on_a = |x: &Point3<f64>| a.point_distance(x).1;
-    let on_b = |x: &Point3<f64>| pos_ab * b.point_distance(&pos_ab.inverse_transform_point(x)).1;
+    let on_b = |x: &Point3<f64>| closest_on_placed(b, pos_ab, x);
     let pa = on_a(&xa);
     let pb = on_b(&xb);
     let mut best = (pa, pb, (pa - pb).norm());

@@ -186,8 +186,9 @@ fn node_key(
 /// realised upper bound of the leaf pair first ([`LeafPair::upper`]: only that is used; its
 /// stage-1 bounds without a level cost 12-19 us of a 38-87 us query at eps 1e-4, the upper
 /// bound of its nearest patch pair about 2 us), so that the node keys of the traversal have
-/// a finite pruning level from the start: each key then stops at the first bound that reaches the
-/// level, and the solid-torus bound is skipped where it cannot ([`node_pair_bound`]).
+/// a finite pruning level from the start: each key then stops at the first bound that
+/// reaches the level, and the solid-torus bound is skipped where it cannot
+/// ([`node_pair_bound`]).
 /// Before, about 65 of a query's 75 node keys were computed in full while the upper bound
 /// was still infinite. Measured (`query_cost --poses 100`, eps 1e-4): pawn-cup 102 -> 72
 /// us, cup-bottle 112 -> 98 us, pawn-pawn 50 -> 42 us. A query whose budget ran out before
