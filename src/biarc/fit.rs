@@ -63,7 +63,24 @@ impl CurveSample {
             derivative,
         }
     }
+
+    /// Evaluates `curve` at `t`, or, where the derivative vanishes there (a stationary point
+    /// of the parametrisation), a little towards `toward` (by [`STATIONARY_NUDGE`] of the
+    /// distance). For subdivision points and biarc joints any curve point will do: the bilens
+    /// bound holds for every joint with its own tangent, and there the tangent is defined.
+    pub fn off_stationary<C: PlanarCurve + ?Sized>(curve: &C, t: f64, toward: f64) -> CurveSample {
+        let s = CurveSample::at(curve, t);
+        if s.derivative != Vector2::zeros() {
+            return s;
+        }
+        CurveSample::at(curve, t + STATIONARY_NUDGE * (toward - t))
+    }
 }
+
+/// Fraction of the way to the interval's end by which a subdivision point or joint that falls
+/// exactly on a stationary point moves (2^-20: far above rounding, far below any change in the
+/// subdivision's balance).
+pub const STATIONARY_NUDGE: f64 = 1.0 / 1048576.0;
 
 /// Relative size of `|q|` at both ends, compared with `|C'| |B - A|`, below which the J-circle is
 /// taken to contain the whole piece (exact circle or line): any curve point is then a joint.
@@ -195,11 +212,16 @@ pub fn fit_biarc<C: PlanarCurve + ?Sized>(
     };
     let scale = DEGENERATE_JOINT_REL * chord * (na.max(nb) / span) * chord;
 
-    let mid = || CurveSample::at(curve, 0.5 * (s0.t + s1.t));
+    let mid = || CurveSample::off_stationary(curve, 0.5 * (s0.t + s1.t), s1.t);
     let joint = if qa.abs() <= scale && qb.abs() <= scale {
         mid()
     } else {
-        solve_joint(curve, s0.t, s1.t, qa, qb, &q)
+        let j = solve_joint(curve, s0.t, s1.t, qa, qb, &q);
+        if j.derivative == Vector2::zeros() {
+            CurveSample::off_stationary(curve, j.t, s1.t)
+        } else {
+            j
+        }
     };
     // On very short or straight pieces `q` is rounding noise and the root may land on an end
     // of the piece, where one arc would have no chord. Any curve point is a valid joint for

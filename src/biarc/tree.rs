@@ -245,6 +245,26 @@ impl PieceCurve<'_> {
         let (c, u, _) = self.locate(t);
         c.curvature(u)
     }
+
+    /// The sample at a spiral's end `t`, with the derivative seen from inside the spiral
+    /// (`leaving` at its start), and the curve-length slack of that choice. A spiral split
+    /// lands on a stationary point of the curve (a cusp, a retrace) where the speed is
+    /// rounding noise and only the one-sided limit gives the tangent; ignoring the dropped
+    /// first-order term `|C'| dt` moves the curve by at most `|C'| (t1 - t0)` over the spiral
+    /// `[t0, t1]`, which is returned as the slack (zero where nothing was dropped).
+    fn end_sample(&self, t: f64, leaving: bool, span_of_spiral: f64) -> (CurveSample, f64) {
+        let (c, u, len) = self.locate(t);
+        let (point, _) = c.point_and_derivative(u);
+        let (derivative, dropped) = c.one_sided_derivative(u, leaving);
+        (
+            CurveSample {
+                t,
+                point,
+                derivative: derivative / len,
+            },
+            dropped / len * span_of_spiral,
+        )
+    }
 }
 
 impl PlanarCurve for PieceCurve<'_> {
@@ -460,12 +480,12 @@ impl BiarcTree {
         let root = self.nodes.len() as u32;
         self.spirals[s].root = root;
         self.nodes.push(placeholder());
-        let (a, b) = {
+        let (a, b, stationary_slack) = {
             let c = self.piece_curve(&info);
-            (
-                CurveSample::at(&c, info.param_range.0),
-                CurveSample::at(&c, info.param_range.1),
-            )
+            let (t0, t1) = info.param_range;
+            let (a, slack_a) = c.end_sample(t0, true, t1 - t0);
+            let (b, slack_b) = c.end_sample(t1, false, t1 - t0);
+            (a, b, slack_a + slack_b)
         };
         self.stack.clear();
         self.stack.push(Job {
@@ -487,7 +507,7 @@ impl BiarcTree {
             let flat = fit.arcs[0]
                 .flattening_error(self.flat_radius)
                 .max(fit.arcs[1].flattening_error(self.flat_radius));
-            let bound = fit.eps + flat;
+            let bound = fit.eps + flat + stationary_slack;
             let leaf = bound <= self.eps;
             if !leaf && job.depth >= MAX_DEPTH {
                 return Err(TreeError::BoundNotReached {
@@ -504,7 +524,7 @@ impl BiarcTree {
                 node.first_child = first;
                 self.nodes.push(placeholder());
                 self.nodes.push(placeholder());
-                let mid = CurveSample::at(&curve, 0.5 * (job.a.t + job.b.t));
+                let mid = CurveSample::off_stationary(&curve, 0.5 * (job.a.t + job.b.t), job.b.t);
                 self.stack.push(Job {
                     node: first + 1,
                     a: mid,

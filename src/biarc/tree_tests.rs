@@ -282,3 +282,71 @@ points = [[0.5, 1.0], [0.0, 1.0]]
         check_tree_with(&prof, &tree, MODEL_SAMPLES);
     }
 }
+
+/// Pieces whose derivative vanishes at an interior parameter build, and their bounds hold
+/// against dense sampling: a straight span traced with a stationary point (control points
+/// 0, 1, 0, 1 along a line: monotone, zero speed at t = 1/2), a span that runs down a line and
+/// back up it (a cusp that retraces, as a random profile drew it), and a semicubical cusp.
+/// The spiral split lands exactly on the stationary parameter, where the tangent is the
+/// one-sided limit.
+#[test]
+fn interior_stationary_points_build() {
+    let texts = [
+        // Stationary straight span: x(t) = 0.2 + 0.6 (1/2 + 4 (t - 1/2)^3), the same in z.
+        r#"
+name = "stationary-line"
+[[piece]]
+degree = 3
+knots = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+points = [[0.2, 0.2], [0.8, 0.8], [0.2, 0.2], [0.8, 0.8]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[0.8, 0.8], [0.8, 0.2]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[0.8, 0.2], [0.2, 0.2]]
+"#,
+        // Down a vertical line by 1e-3 and back up it (a zero-width fin).
+        r#"
+name = "retrace"
+[[piece]]
+degree = 3
+knots = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+points = [[0.5, 0.0], [0.5, -0.001], [0.5, -0.002], [0.5, 0.5]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[0.5, 0.5], [1.0, 0.5]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[1.0, 0.5], [0.5, 0.0]]
+"#,
+        // Semicubical cusp: (0.5 + 0.3 s^2, 0.5 + 0.3 s^3) for s in [-1, 1], t = (s + 1) / 2.
+        r#"
+name = "cusp"
+[[piece]]
+degree = 3
+knots = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+points = [[0.8, 0.2], [0.4, 0.8], [0.4, 0.2], [0.8, 0.8]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[0.8, 0.8], [1.2, 0.5]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[1.2, 0.5], [0.8, 0.2]]
+"#,
+    ];
+    for text in texts {
+        let prof = crate::profile_file::from_toml_str(text).unwrap();
+        for eps in [1e-3, 1e-5] {
+            let tree =
+                BiarcTree::build(&prof, eps).unwrap_or_else(|e| panic!("{}: {e}", prof.name()));
+            check_tree_with(&prof, &tree, MODEL_SAMPLES);
+        }
+    }
+}

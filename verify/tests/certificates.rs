@@ -342,3 +342,46 @@ fn repeated_end_control_point_profile() {
         assert!(!c.d.overlap);
     }
 }
+
+/// A random profile whose curve runs down a line and back up it (speed exactly zero inside a
+/// piece; drawn by the proptest generator, which failed CI because it did not build) builds,
+/// and queries against a sphere under the fin's tip, beside it and far from it pass the
+/// oracle's checks; so does the proptest's own failing case.
+#[test]
+fn interior_cusp_profile() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions/cusp-retrace.toml");
+    let a = revdist::profile_file::load_path(&path).unwrap();
+    let sphere = model("sphere").unwrap();
+    // The fin's tip is the ring rho = 1.60394, z = -0.97265; the sphere (radius 0.75, centre
+    // at z = 0.75 in its frame) sits below it at the gap.
+    for eps in [1e-3, 1e-5] {
+        for gap in [1e-1, 1e-3] {
+            for lateral in [-0.01, 0.0, 0.0004] {
+                let pose = translation(1.60394 + lateral, 0.0, -0.97265 - 1.5 - gap);
+                let c = checked(
+                    &a,
+                    &sphere,
+                    &pose,
+                    eps,
+                    &QueryOptions::default(),
+                    &format!("cusp eps {eps} gap {gap} lateral {lateral}"),
+                );
+                assert!(!c.d.overlap);
+            }
+        }
+    }
+    let (other, _) = verify::random_profiles::random_profile(
+        &mut verify::random_profiles::SplitMix64(0),
+        "prop-a",
+        1.0,
+    );
+    checked(
+        &other,
+        &a,
+        &translation(0.0, 0.0, 0.0),
+        1e-3,
+        &QueryOptions::default(),
+        "proptest case",
+    );
+}

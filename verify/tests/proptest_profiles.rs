@@ -10,7 +10,12 @@ use verify::queries::{single, PoseSpec};
 use verify::random_profiles::{random_profile, SplitMix64};
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 40, failure_persistence: None, ..ProptestConfig::default() })]
+    // 40 cases unless PROPTEST_CASES asks for more (the seed comes from PROPTEST_RNG_SEED).
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(40),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn random_profiles_are_certified(
