@@ -121,6 +121,10 @@ pub struct LeafPair<'q> {
     settle: f64,
     memo: BoundaryMemo,
     cores: CoreMemo,
+    /// Stage 1's cheap bound of each patch pair it met, `(patch of A, patch of B, bound)`:
+    /// the later stages of the same leaf pair start from it instead of computing it again
+    /// (it was searched to a level at least as high as theirs, so it is at least as tight).
+    stage1: Vec<(u32, u32, PatchLower)>,
 }
 
 /// Outward unit normal (3-D, tree frame) of a patch at its surface point `x`.
@@ -151,7 +155,18 @@ impl<'q> LeafPair<'q> {
             settle: settle_threshold(scale, ta.eps + tb.eps),
             memo: BoundaryMemo::default(),
             cores: CoreMemo::default(),
+            stage1: Vec::new(),
         }
+    }
+
+    /// The cheap bound of the patch pair `(ia, ib)`: stage 1's when it met the pair, else
+    /// [`patch_lower`] searched to `prune_at`.
+    fn cheap_lower(&mut self, ia: u32, ib: u32, prune_at: f64) -> PatchLower {
+        if let Some(&(_, _, lower)) = self.stage1.iter().find(|e| (e.0, e.1) == (ia, ib)) {
+            return lower;
+        }
+        let (pa, pb) = self.patches(ia, ib);
+        patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores)
     }
 
     fn patch_ranges(&self, na: u32, nb: u32) -> impl Iterator<Item = (u32, u32)> {
@@ -202,6 +217,7 @@ impl<'q> LeafPair<'q> {
                 }
                 lower.lower = split;
             }
+            self.stage1.push((ia, ib, lower));
             lowers.push((lower, ia, ib));
         }
         // Realised pairs smallest bound first: a pair whose (positive) bound is not below
@@ -280,7 +296,7 @@ impl<'q> LeafPair<'q> {
         let mut lower = f64::INFINITY;
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
-            let cheap = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores);
+            let cheap = self.cheap_lower(ia, ib, prune_at);
             let dir = cheap.direction();
             let cheap = cheap.lower;
             // Once one patch pair stays below the level the leaf pair is kept whatever the
@@ -331,8 +347,7 @@ impl<'q> LeafPair<'q> {
         // below the best distance so far can neither lower the minimum nor interpenetrate.
         let mut order: Vec<(PatchLower, u32, u32)> = Vec::with_capacity(4);
         for (ia, ib) in self.patch_ranges(na, nb) {
-            let (pa, pb) = self.patches(ia, ib);
-            let lower = patch_lower(pa, pb, self.pos_ab, prune_at, &mut self.cores);
+            let lower = self.cheap_lower(ia, ib, prune_at);
             order.push((lower, ia, ib));
         }
         r.patch_bounds += order.len();
