@@ -210,20 +210,24 @@ impl<const N: usize> ParallelHull<N> {
     /// `n`'s horizontal part (its centre when `n` is vertical, also in the hull).
     fn support(&self, n: &Vector3<f64>) -> (f64, Point3<f64>) {
         let l = norm2(n.x, n.y);
-        let mut best = (f64::NEG_INFINITY, Point3::origin());
+        // The best parallel first, then its point (one division, not one per improvement).
+        let mut best: Option<(f64, &Point2<f64>)> = None;
         for m in &self.points[..self.len] {
-            let r = m.x.abs();
-            let v = n.z * m.y + r * l;
-            if v > best.0 {
-                let p = if l > 0.0 {
-                    Point3::new(n.x * r / l, n.y * r / l, m.y)
-                } else {
-                    Point3::new(0.0, 0.0, m.y)
-                };
-                best = (v, p);
+            let v = n.z * m.y + m.x.abs() * l;
+            if v > best.map_or(f64::NEG_INFINITY, |b| b.0) {
+                best = Some((v, m));
             }
         }
-        best
+        let Some((v, m)) = best else {
+            return (f64::NEG_INFINITY, Point3::origin());
+        };
+        let r = m.x.abs();
+        let p = if l > 0.0 {
+            Point3::new(n.x * r / l, n.y * r / l, m.y)
+        } else {
+            Point3::new(0.0, 0.0, m.y)
+        };
+        (v, p)
     }
 
     fn size(&self) -> f64 {
