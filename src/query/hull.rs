@@ -28,6 +28,11 @@ use super::patch::ProfileArc;
 use crate::num::norm2;
 use nalgebra::{Isometry3, Matrix3, Point2, Point3, Vector2, Vector3};
 
+/// Convergence of [`ParallelHull::nearest_points`]: the hulls' nearest points are wanted as
+/// the start of a realised pair (projected onto the patches and polished), not as a bound;
+/// iterating them to [`GAP_REL`] took up to 24 support points where the start needs a few.
+pub const WITNESS_GAP_REL: f64 = 1e-3;
+
 /// Support points computed at most per bound. The hulls are smooth (circles) where the
 /// iteration converges linearly; 24 steps reach [`GAP_REL`] on the measured leaf pairs,
 /// and a bound stopped early stays valid.
@@ -284,8 +289,43 @@ impl<const N: usize> ParallelHull<N> {
         let t = pos_ab.translation.vector;
         let scale = 1.0 + t.norm() + self.size() + other.size();
         let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        let (lower, witness) =
-            hull_separation(self, other, pos_ab, dir, enough + slack, cap, !converge);
+        let (lower, witness) = hull_separation(
+            self,
+            other,
+            pos_ab,
+            dir,
+            enough + slack,
+            cap,
+            !converge,
+            GAP_REL,
+        );
+        (lower - slack, witness)
+    }
+
+    /// The bound of [`ParallelHull::bound_and_witness`] with the hulls' nearest points to
+    /// [`WITNESS_GAP_REL`]: iterated until the bound reaches `enough` or is within that
+    /// fraction of the hulls' distance, never given up below `enough`. The points start a
+    /// realised pair of the pieces, which projection and polishing refine further.
+    pub fn nearest_points<const M: usize>(
+        &self,
+        other: &ParallelHull<M>,
+        pos_ab: &Isometry3<f64>,
+        dir: &Vector3<f64>,
+        enough: f64,
+    ) -> (f64, Option<PointPair>) {
+        let t = pos_ab.translation.vector;
+        let scale = 1.0 + t.norm() + self.size() + other.size();
+        let slack = self.grow + other.grow + BOUND_SLACK * scale;
+        let (lower, witness) = hull_separation(
+            self,
+            other,
+            pos_ab,
+            dir,
+            enough + slack,
+            MAX_ITERATIONS,
+            false,
+            WITNESS_GAP_REL,
+        );
         (lower - slack, witness)
     }
 }
@@ -293,7 +333,8 @@ impl<const N: usize> ParallelHull<N> {
 /// A lower bound of the distance between the hulls of `a` (frame A) and `b` (placed by
 /// `pos_ab`), iterated from direction `dir` until it reaches `enough`, converges, or has
 /// computed `cap` support points (module doc); with `give_up`, also once `enough` is out
-/// of reach.
+/// of reach. Converged means within `gap` (relative) of the hulls' distance.
+#[allow(clippy::too_many_arguments)]
 fn hull_separation<const N: usize, const M: usize>(
     a: &ParallelHull<N>,
     b: &ParallelHull<M>,
@@ -302,6 +343,7 @@ fn hull_separation<const N: usize, const M: usize>(
     enough: f64,
     cap: usize,
     give_up: bool,
+    gap: f64,
 ) -> (f64, Option<PointPair>) {
     // The rotation as a matrix once: each step rotates a direction and a point (a matrix
     // product is cheaper than the quaternion's).
@@ -331,7 +373,7 @@ fn hull_separation<const N: usize, const M: usize>(
         // Past the first step `v` is a point of D, so `|v|` bounds the hulls' distance from
         // above: below a finite `enough`, no direction can prove `enough`.
         let hopeless = give_up && enough.is_finite() && vn < enough;
-        let converged = step > 0 && (hopeless || vn - lower <= GAP_REL * vn);
+        let converged = step > 0 && (hopeless || vn - lower <= gap * vn);
         if best >= enough || converged {
             break;
         }
