@@ -32,13 +32,14 @@ use nalgebra::{Isometry3, Point2, Point3, Vector3};
 pub const SETTLE_REL: f64 = 1e-10;
 
 /// Share of two leaves' eps within which their pieces' hulls may stand in for the arcs'
-/// tori in a patch pair's cheap bound ([`patch_lower`]'s `precision`): a hull within half
-/// the leaves' eps of its piece loses less than the leaves themselves carry, and its
-/// nearest points start the realised pair. Measured against the tori everywhere
-/// (`query_cost --poses 150`, medians of two alternating runs, eps 1e-4): pawn-pawn 24.2 ->
+/// tori in a patch pair's cheap bound ([`patch_lower`]'s `precision`): a hull within the
+/// leaves' eps of its piece loses no more than the leaves themselves carry, and its nearest
+/// points start the realised pair. Measured against the tori everywhere (`query_cost
+/// --poses 150`, medians of two alternating runs, eps 1e-4, share 0.5): pawn-pawn 24.2 ->
 /// 23.3 us, table-lightmill 23.2 -> 20.6, pawn-cup 38.5 -> 36.0, cup-bottle 43.4 -> 37.0;
-/// same node pairs; eps 1e-3 and 1e-5 also 1-12% faster.
-pub const HULL_PRECISION_SHARE: f64 = 0.5;
+/// same node pairs. Share 1 against 0.5: the same at 1e-4, cup-bottle at 1e-3 and pawn-cup
+/// and cup-bottle at 1e-5 5-10% faster; share 2 no better.
+pub const HULL_PRECISION_SHARE: f64 = 1.0;
 
 /// The absolute settle threshold of a query at configuration scale `scale` between trees
 /// of eps summing to `eps_sum`: [`SETTLE_REL`] of the scale, but at most a quarter of
