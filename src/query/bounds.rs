@@ -24,7 +24,7 @@ use super::patch::ProfileArc;
 use super::tree::Disk;
 use crate::circle::min_distance_value;
 use crate::num::norm2;
-use nalgebra::{Isometry3, Point3};
+use nalgebra::{Isometry3, Point3, Vector3};
 
 /// Relative slack (of the configuration scale) subtracted from computed bounds: the circle
 /// solver guarantees its minimum distance to `1e-12` of the scale
@@ -59,18 +59,37 @@ fn point_circle(p: &Point3<f64>, r: f64, z: f64) -> f64 {
 }
 
 /// Sphere/sphere and sphere/torus lower bounds of the revolved disks.
+///
+/// Both centres lie on the axes, so B's axis direction `u` in A's frame (the rotation's
+/// third column) and the translation `t` place everything: B's centre is `t + z_b u`, and
+/// A's centre seen from B has height `u . w` and distance `|u x w|` from B's axis, `w = c_A
+/// - t` (a cross product, free of the cancellation of `|w|^2 - (u . w)^2`). No full rotation.
 pub fn sphere_bound(da: &Disk, db: &Disk, pos_ab: &Isometry3<f64>) -> f64 {
     let (ra, za, sa) = torus_of(da);
     let (rb, zb, sb) = torus_of(db);
+    let u = axis_of(pos_ab);
+    let t = pos_ab.translation.vector;
     let ca = Point3::new(0.0, 0.0, za);
-    let cb_in_a = pos_ab * Point3::new(0.0, 0.0, zb);
+    let cb_in_a = Point3::from(t + u * zb);
     let ss = (ca - cb_in_a).norm() - (ra + sa) - (rb + sb);
     // Sphere of B against torus of A, and sphere of A against torus of B.
     let st = point_circle(&cb_in_a, ra, za) - sa - (rb + sb);
-    let ca_in_b = pos_ab.inverse_transform_point(&ca);
-    let ts = point_circle(&ca_in_b, rb, zb) - sb - (ra + sa);
+    let w = ca.coords - t;
+    let ts = norm2(u.cross(&w).norm() - rb, u.dot(&w) - zb) - sb - (ra + sa);
     let scale = 1.0 + ca.coords.norm() + cb_in_a.coords.norm() + ra + rb + sa + sb;
     ss.max(st).max(ts) - BOUND_SLACK * scale
+}
+
+/// B's axis direction in A's frame: the third column of `pos_ab`'s rotation, from the unit
+/// quaternion `(w, x, y, z)` as `(2 (xz + wy), 2 (yz - wx), 1 - 2 (x^2 + y^2))`.
+fn axis_of(pos_ab: &Isometry3<f64>) -> Vector3<f64> {
+    let q = pos_ab.rotation.quaternion();
+    let (w, x, y, z) = (q.w, q.i, q.j, q.k);
+    Vector3::new(
+        2.0 * (x * z + w * y),
+        2.0 * (y * z - w * x),
+        1.0 - 2.0 * (x * x + y * y),
+    )
 }
 
 /// Spherical-shell lower bound of two revolved profile pieces: an arc with centre
