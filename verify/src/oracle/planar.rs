@@ -472,6 +472,40 @@ mod tests {
         assert!(idx.inside_poly([1.999, 0.999]));
     }
 
+    /// A cubic that leaves a corner backwards along its own line for 4e-6 and returns (a
+    /// retrace, found by the stationary-point property test): the polyline's probes at 1/8
+    /// of a chord missed the fin's tip, and the oracle put a point of the tip 3.9e-6 from
+    /// the curve. The control-polygon bound of the sagitta refines the polyline around it.
+    #[test]
+    fn retrace_fin_at_a_corner_is_on_the_curve() {
+        let (c, d) = (
+            [0.6149755885599717, 0.90542182387424],
+            [1.5437466728434721, 0.90542182387424],
+        );
+        let fin = PieceEval::new(
+            3,
+            &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            &[c, [0.6137585056521959, c[1]], [0.8929366780727052, c[1]], d],
+            None,
+        );
+        let (a, e) = (
+            [0.5041220461639593, 1.4047918639542627],
+            [1.6780510783507863, 1.4047918639542627],
+        );
+        let g = ProfileGeom::from_pieces(
+            "retrace".into(),
+            vec![line(a, c), fin, line(d, e), line(e, a)],
+            ProfileKind::Closed,
+        );
+        let idx = PlanarIndex::new(g);
+        // The tip: x(t) = c + 3 t (x1 - c) + ... has its minimum at t = 0.0021695...
+        let tip = [0.6149716273419957, c[1]];
+        let hit = idx.closest(tip);
+        assert!(hit.dist < 1e-12, "tip {:e} from the curve", hit.dist);
+        let beyond = idx.closest([tip[0] - 1e-6, c[1]]);
+        assert!((beyond.dist - 1e-6).abs() < 1e-12, "{:e}", beyond.dist);
+    }
+
     #[test]
     fn open_chain_closed_by_axis() {
         // Half of a square [0, 1] x [0, 1] around the axis: bottom, side, top.

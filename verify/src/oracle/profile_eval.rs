@@ -114,6 +114,31 @@ impl HomSpline {
         buf[p]
     }
 
+    /// The blossom of the polynomial on knot span `k` at the `p` arguments `us` (de Boor's
+    /// algorithm with the argument `us[r - 1]` at level `r`): with `p - i` copies of `ta`
+    /// and `i` of `tb` it is the `i`-th Bezier control point of the curve on `[ta, tb]`.
+    fn blossom(&self, k: usize, us: &[f64]) -> [f64; 3] {
+        let p = self.degree;
+        let mut buf: Vec<[f64; 3]> = (0..=p).map(|j| self.ctrl[j + k - p]).collect();
+        for r in 1..=p {
+            let t = us[r - 1];
+            for j in (r..=p).rev() {
+                let i = j + k - p;
+                let den = self.knots[i + p + 1 - r] - self.knots[i];
+                let alpha = if den > 0.0 {
+                    (t - self.knots[i]) / den
+                } else {
+                    0.0
+                };
+                let prev = buf[j - 1];
+                for (v, pv) in buf[j].iter_mut().zip(prev) {
+                    *v = (1.0 - alpha) * pv + alpha * *v;
+                }
+            }
+        }
+        buf[p]
+    }
+
     /// The derivative spline (degree `p - 1`), `None` for degree 0.
     fn derivative(&self) -> Option<HomSpline> {
         let p = self.degree;
@@ -404,7 +429,35 @@ fn chord_deviation(pc: &PieceEval, ta: f64, tb: f64, pa: P2, pb: P2) -> f64 {
         let t = ta + (tb - ta) * i as f64 / (SAG_PROBES + 1) as f64;
         dev = dev.max(point_segment_distance(pc.point(t), pa, pb));
     }
-    dev
+    dev.max(pc.hull_deviation(ta, tb, pa, pb))
+}
+
+impl PieceEval {
+    /// A bound on the distance from the curve on `[ta, tb]` (inside one knot span) to the
+    /// chord `[pa, pb]`: the curve lies in the convex hull of its Bezier control points on
+    /// that interval (positive weights), and the distance to a segment is convex, so the
+    /// largest control point distance bounds it. Unlike probes, it sees features between
+    /// samples, such as a piece that runs back along itself for a few micrometres (a
+    /// retrace) near a sample; `+inf` (subdivide) for non-positive weights.
+    fn hull_deviation(&self, ta: f64, tb: f64, pa: P2, pb: P2) -> f64 {
+        let c = &self.curve;
+        let p = c.degree;
+        if p < 2 {
+            return 0.0;
+        }
+        let k = c.span(0.5 * (ta + tb));
+        let mut us = vec![ta; p];
+        let mut dev: f64 = 0.0;
+        for i in 1..p {
+            us[p - i] = tb;
+            let h = c.blossom(k, &us);
+            if h[2].is_nan() || h[2] <= 0.0 {
+                return f64::INFINITY;
+            }
+            dev = dev.max(point_segment_distance([h[0] / h[2], h[1] / h[2]], pa, pb));
+        }
+        dev
+    }
 }
 
 /// Distance from `q` to the segment `[a, b]`.
