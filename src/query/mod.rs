@@ -26,14 +26,14 @@
 //! `patch_bounds`, `patch_tests`). A leaf pair is measured exactly only when its sharpened
 //! lower bound still holds the query's lower bound; on the exact torus that never happens.
 //!
-//! **Where the time goes now** (close poses, eps 1e-4, `query_cost --poses 100`, medians
-//! 26-46 us on pawn-pawn, pawn-cup, cup-bottle, table-lightmill; perf over the timed
-//! queries of the four pairs): stage-1 leaf bounds 36% of the time, node keys 21% (spheres
-//! 7%, node tori 7%, node hulls most of the rest), the cold query's first leaf 10%, stage
-//! 1b 9% and the exact stage 11% (0.0-0.3 patch pairs per query). Across the stages, hull
-//! iterations take a third (support points 13%, the simplex step 12%), certified
-//! circle/circle minima 10%, circle/cone solves 8% and closest-point projections
-//! (realised pairs, [`patch_bound::polish`]) 10%. What is left is spread over primitives
+//! **Where the time goes now** (close poses, eps 1e-4, `query_cost --poses 150`, medians
+//! 20-37 us on pawn-pawn, pawn-cup, cup-bottle, table-lightmill; perf over the timed
+//! queries of the four pairs): stage-1 leaf bounds 40% of the time, node keys 25% (spheres
+//! 9%, node hulls most of the rest), the cold query's first leaf 7%, stage 1b 6% and the
+//! exact stage 10% (0.0-0.3 patch pairs per query). Across the stages, hull iterations
+//! take a third (support points 14%, the simplex step 15%), certified circle/circle minima
+//! 9%, circle/cone solves 5% and closest-point projections (realised pairs,
+//! [`patch_bound::polish`]) 7%. What is left is spread over primitives
 //! that each cost 0.02-1 us and are each called a few to a hundred times per query; no
 //! single step holds more than a seventh of the time. Before the dive, about 65 of a
 //! query's 75 node keys were computed in full while the upper bound was still infinite, and
@@ -57,6 +57,10 @@
 //!   alternating closest points: near the cup's waist (an arc of radius 5-11 bulging
 //!   towards the axis) one alternation left it 1e-4 to 1e-3 long, and the leaf pair that
 //!   held the minimum was tightened and solved exactly for its upper bound alone.
+//! * where both pieces' hulls lie within the leaves' eps of the pieces, the hull bound and
+//!   the hulls' nearest points stand in for the arcs' tori and their near points
+//!   ([`leaf::HULL_PRECISION_SHARE`]): the tori's near points on the cup's waist started
+//!   realised pairs far from the minimum (cup-bottle 43 -> 37 us at eps 1e-4).
 //!
 //! Earlier (before the hull bounds): 3-9 leaf pairs per query went to the exact solve,
 //! 80% of them as "may intersect" only because a straight piece's or a wide arc's solid
@@ -83,7 +87,10 @@
 //! torus bound whenever the hulls are apart (-5%, within noise); two or four
 //! chords per arc in node hulls (no change, up to 3x the hull memory); trees built to eps/4
 //! under the same tolerance (no change: the leaves' eps is not what sends pairs to the
-//! exact stage); a regula-falsi crossing scan (the bisection is not where the time goes).
+//! exact stage); a regula-falsi crossing scan (the bisection is not where the time goes);
+//! lazy node keys (children queued on their sphere bound, the hull and torus bounds computed
+//! only when a pair reaches the top of the queue: same time, since a query computes only
+//! 10-20 hull keys and nearly all of them are for pairs it expands anyway).
 //!
 //! # Layout
 //!
