@@ -54,6 +54,7 @@ pub fn query_tree_bytes(t: &QueryTree) -> usize {
         + std::mem::size_of_val(t.chain.as_slice())
         + std::mem::size_of_val(t.node_ends.as_slice())
         + std::mem::size_of_val(t.hulls.as_slice())
+        + std::mem::size_of_val(t.upper_hulls.as_slice())
 }
 
 #[cfg(test)]

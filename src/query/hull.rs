@@ -119,6 +119,61 @@ pub type NodeHull = ParallelHull<NODE_POINTS>;
 /// (`query_cost --poses 100`, eps 1e-4) at up to three times the hull memory.
 pub const NODE_POINTS: usize = 3;
 
+/// Parallels of an upper-level hull ([`UpperHull`]): the 2-D convex hull of the meridian
+/// points of the spirals below a node over several spirals, when it has at most this many
+/// vertices (no hull otherwise).
+pub const UPPER_POINTS: usize = 8;
+
+/// The hull of a node over several spirals ([`ParallelHull::union_of`]).
+pub type UpperHull = ParallelHull<UPPER_POINTS>;
+
+/// A node's hull, of either size: a fat biarc's ([`NodeHull`]) or a union over spirals
+/// ([`UpperHull`]).
+#[derive(Debug, Clone, Copy)]
+pub enum HullRef<'a> {
+    Node(&'a NodeHull),
+    Upper(&'a UpperHull),
+}
+
+impl HullRef<'_> {
+    /// [`ParallelHull::union_of`] of two node hulls.
+    pub fn union(&self, other: &HullRef<'_>) -> Option<UpperHull> {
+        match (*self, *other) {
+            (HullRef::Node(a), HullRef::Node(b)) => UpperHull::union_of(a, b),
+            (HullRef::Node(a), HullRef::Upper(b)) => UpperHull::union_of(a, b),
+            (HullRef::Upper(a), HullRef::Node(b)) => UpperHull::union_of(a, b),
+            (HullRef::Upper(a), HullRef::Upper(b)) => UpperHull::union_of(a, b),
+        }
+    }
+
+    /// The hull's meridian points and growth (tests).
+    #[cfg(test)]
+    pub(crate) fn points_and_grow_for_tests(&self) -> (Vec<Point2<f64>>, f64) {
+        match *self {
+            HullRef::Node(h) => (h.points_for_tests(), h.grow),
+            HullRef::Upper(h) => (h.points_for_tests(), h.grow),
+        }
+    }
+
+    /// [`ParallelHull::bound_capped`] of this hull (frame A) against `other` (placed by
+    /// `pos_ab`).
+    pub fn bound_capped(
+        &self,
+        other: &HullRef<'_>,
+        pos_ab: &Isometry3<f64>,
+        dir: &Vector3<f64>,
+        enough: f64,
+        cap: usize,
+    ) -> f64 {
+        match (*self, *other) {
+            (HullRef::Node(a), HullRef::Node(b)) => a.bound_capped(b, pos_ab, dir, enough, cap),
+            (HullRef::Node(a), HullRef::Upper(b)) => a.bound_capped(b, pos_ab, dir, enough, cap),
+            (HullRef::Upper(a), HullRef::Node(b)) => a.bound_capped(b, pos_ab, dir, enough, cap),
+            (HullRef::Upper(a), HullRef::Upper(b)) => a.bound_capped(b, pos_ab, dir, enough, cap),
+        }
+    }
+}
+
 /// A point of A's hull and a point of B's (A's frame).
 pub type PointPair = (Point3<f64>, Point3<f64>);
 
@@ -163,6 +218,33 @@ impl<const N: usize> ParallelHull<N> {
         }
         h.grow += extra;
         Some(h)
+    }
+
+    /// The hull of the union of two hulls: the support function of a union is the larger
+    /// of the two, and `n_z z + |rho| |n_xy|` is linear in `(|rho|, z)`, so the vertices of
+    /// the 2-D convex hull of both sets' meridian points `(|rho|, z)` give the same support
+    /// function; grown by the larger growth. `None` when that hull has more than `N`
+    /// vertices.
+    pub fn union_of<const A: usize, const B: usize>(
+        a: &ParallelHull<A>,
+        b: &ParallelHull<B>,
+    ) -> Option<ParallelHull<N>> {
+        let mut pts: Vec<Point2<f64>> = a.points[..a.len]
+            .iter()
+            .chain(&b.points[..b.len])
+            .map(|m| Point2::new(m.x.abs(), m.y))
+            .collect();
+        let vertices = right_chain(&convex_hull_2d(&mut pts));
+        if vertices.len() > N || vertices.is_empty() {
+            return None;
+        }
+        let mut points = [vertices[0]; N];
+        points[..vertices.len()].copy_from_slice(&vertices);
+        Some(ParallelHull {
+            points,
+            len: vertices.len(),
+            grow: a.grow.max(b.grow),
+        })
     }
 
     /// The hull of `parts` equal chords of a piece (one for a segment; `parts < N`), grown
@@ -266,6 +348,21 @@ impl<const N: usize> ParallelHull<N> {
         enough: f64,
     ) -> f64 {
         self.bound_and_witness(other, pos_ab, dir, enough, false).0
+    }
+
+    /// [`ParallelHull::bound_until`] after at most `cap` support points.
+    pub fn bound_capped<const M: usize>(
+        &self,
+        other: &ParallelHull<M>,
+        pos_ab: &Isometry3<f64>,
+        dir: &Vector3<f64>,
+        enough: f64,
+        cap: usize,
+    ) -> f64 {
+        let t = pos_ab.translation.vector;
+        let scale = 1.0 + t.norm() + self.size() + other.size();
+        let slack = self.grow + other.grow + BOUND_SLACK * scale;
+        hull_separation(self, other, pos_ab, dir, enough + slack, cap, true, GAP_REL).0 - slack
     }
 
     /// [`ParallelHull::bound_until`] with the hulls' nearest points found by the
@@ -383,6 +480,52 @@ fn hull_separation<const N: usize, const M: usize>(
         v = simplex.closest_to_origin();
     }
     (best, simplex.witness())
+}
+
+/// The vertices of a convex polygon (counter-clockwise) that maximise some `l |rho| + n_z z`
+/// with `l >= 0`, the only ones a support function of parallels can pick: those with an
+/// adjacent edge whose outward normal `(dz, -drho)` points to `rho >= 0`.
+fn right_chain(h: &[Point2<f64>]) -> Vec<Point2<f64>> {
+    let m = h.len();
+    if m < 3 {
+        return h.to_vec();
+    }
+    let faces_right = |i: usize| h[(i + 1) % m].y - h[i].y >= 0.0;
+    (0..m)
+        .filter(|&i| faces_right((i + m - 1) % m) || faces_right(i))
+        .map(|i| h[i])
+        .collect()
+}
+
+/// Vertices of the convex hull of `pts` (Andrew's monotone chain; collinear points
+/// dropped, a single point kept).
+fn convex_hull_2d(pts: &mut [Point2<f64>]) -> Vec<Point2<f64>> {
+    pts.sort_by(|p, q| p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y)));
+    let turn = |o: &Point2<f64>, a: &Point2<f64>, b: &Point2<f64>| {
+        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+    };
+    let mut hull: Vec<Point2<f64>> = Vec::with_capacity(pts.len() + 1);
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
+        for p in iter {
+            while hull.len() >= start + 2
+                && turn(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(*p);
+        }
+        hull.pop();
+    }
+    if hull.is_empty() {
+        hull.extend(pts.first());
+    }
+    hull
 }
 
 /// Up to four points `w = q - p` of the Minkowski difference, each with its points `p` on
@@ -550,6 +693,57 @@ mod tests {
         let (va, _) = a.support(n);
         let (vb, _) = b.support(&(pos_ab.rotation.inverse() * -n));
         -(vb - n.dot(&pos_ab.translation.vector)) - va - a.grow - b.grow
+    }
+
+    /// The union hull's support function is the larger of the two hulls' in every direction
+    /// (the 2-D convex hull's right chain keeps every point a support can pick), for random
+    /// node hulls of arcs and segments, some reaching the axis; growth the larger of two.
+    #[test]
+    fn union_hull_supports_both() {
+        let mut s = Rng(11);
+        let mut unions = 0;
+        for _ in 0..3000 {
+            let piece = |s: &mut Rng| {
+                let start = Point2::new(
+                    if s.f() < 0.2 { 0.0 } else { 2.0 * s.f() },
+                    2.0 * s.f() - 1.0,
+                );
+                if s.f() < 0.4 {
+                    ProfileArc::Segment {
+                        start,
+                        end: Point2::new(2.0 * s.f(), 2.0 * s.f() - 1.0),
+                    }
+                } else {
+                    ProfileArc::Arc {
+                        center: Point2::new(1.0 + s.f(), s.f()),
+                        radius: 0.1 + 0.5 * s.f(),
+                        phi_start: 6.0 * s.f(),
+                        sweep: (2.0 * s.f() - 1.0) * 2.5,
+                    }
+                }
+            };
+            let (Some(a), Some(b)) = (
+                NodeHull::of_pieces(&[piece(&mut s)], 0.01 * s.f()),
+                NodeHull::of_pieces(&[piece(&mut s)], 0.01 * s.f()),
+            ) else {
+                continue;
+            };
+            let Some(u) = UpperHull::union_of(&a, &b) else {
+                continue;
+            };
+            unions += 1;
+            assert_eq!(u.grow, a.grow.max(b.grow));
+            for _ in 0..20 {
+                let n = Vector3::new(2.0 * s.f() - 1.0, 2.0 * s.f() - 1.0, 2.0 * s.f() - 1.0);
+                let both = a.support(&n).0.max(b.support(&n).0);
+                let got = u.support(&n).0;
+                assert!(
+                    (got - both).abs() <= 1e-12 * (1.0 + both.abs()),
+                    "{got} vs {both}"
+                );
+            }
+        }
+        assert!(unions > 2000, "{unions}");
     }
 
     /// An arc's chord points (placed by rotation, [`PieceHull::of_piece`]) lie on the arc

@@ -24,6 +24,10 @@ use std::time::{Duration, Instant};
 /// needed).
 const QUEUE_CAPACITY: usize = 128;
 
+/// Support points per hull bound of a node pair over several spirals ([`node_key`]): one
+/// step is the separating-plane bound along the direction between the disks' axis points.
+const UPPER_HULL_STEPS: usize = 1;
+
 /// Budget of an anytime query: stop after this many node pairs or this much time and
 /// return the certified bounds reached so far.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -164,18 +168,30 @@ fn node_key(
         .get(a as usize)
         .and_then(Option::as_ref)
         .zip(tb.hulls.get(b as usize).and_then(Option::as_ref));
-    // A node over several spirals (the tree's upper level: no biarc, no hull) has a disk
-    // around all of them, whose solid torus is about as fat as its sphere: such a pair's
-    // key only orders the search, and the spheres do that. The check that skips a torus
-    // that cannot reach the level cost more there than the few tori it let through saved
-    // (`query_cost --poses 100`, eps 1e-4: 2-4 more node pairs, 7-14% less time). Nodes
-    // inside a spiral keep the caller's kind.
-    let kind = if ta.over_spirals(a) || tb.over_spirals(b) {
-        BoundKind::Sphere
-    } else {
-        kind
-    };
+    // A node over several spirals (the tree's upper level: no biarc) has a disk around all
+    // of them, whose solid torus is about as fat as its sphere: the torus is not tried (the
+    // check that skips one that cannot reach the level cost more there than the few tori
+    // it let through saved). Its hull is the union of the spirals' fat-biarc hulls
+    // ([`QueryTree::hull_ref`]), tried for one support step ([`UPPER_HULL_STEPS`]): nine in
+    // ten node pairs of a query involve the upper level, and on spheres alone their keys
+    // were too loose to prune it (`query_cost --poses 150`, eps 1e-4, node pairs per query:
+    // pawn-pawn 37 -> 18, pawn-cup 57 -> 26, cup-bottle 46 -> 24, table-lightmill 34 -> 19).
     let (da, db) = (&ta.nodes[a as usize].bound, &tb.nodes[b as usize].bound);
+    if ta.over_spirals(a) || tb.over_spirals(b) {
+        let s = sphere_bound(da, db, pos_ab);
+        if kind == BoundKind::Sphere || s >= prune_at {
+            return parent.max(s);
+        }
+        let hull = match (ta.hull_ref(a), tb.hull_ref(b)) {
+            (Some(ha), Some(hb)) => {
+                let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y)
+                    - Point3::new(0.0, 0.0, da.center.y);
+                ha.bound_capped(&hb, pos_ab, &dir, prune_at, UPPER_HULL_STEPS)
+            }
+            _ => f64::NEG_INFINITY,
+        };
+        return parent.max(s.max(hull));
+    }
     parent.max(node_pair_bound(da, db, pos_ab, kind, prune_at, hulls))
 }
 

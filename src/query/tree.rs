@@ -5,6 +5,7 @@
 //! torus containing the corresponding part of the solid's boundary (see [`super::bounds`]).
 
 use super::bounds::NodeHull;
+use super::hull::{HullRef, UpperHull};
 use super::offset::{detect, OffsetSolid};
 use super::patch::{Patch, ProfileArc};
 use crate::biarc::{Arc as BiarcArc, BiarcTree};
@@ -145,6 +146,11 @@ pub struct QueryTree {
     /// ([`super::bounds::ParallelHull::bound`]). `None` for nodes without a biarc (the upper
     /// level over the spirals, trees built from leaves) or with an arc above a half turn.
     pub hulls: Vec<Option<NodeHull>>,
+    /// Per node of the upper level over the spirals (index `node - upper_start`), the hull
+    /// of the spirals' node hulls below it ([`UpperHull`], [`super::hull::ParallelHull::union_of`]) when
+    /// every spiral root has one and their union's convex hull has at most
+    /// [`super::hull::UPPER_POINTS`] vertices.
+    pub upper_hulls: Vec<Option<UpperHull>>,
     /// Nodes from this index on form the upper level over the spirals of a biarc tree
     /// (disks around several spirals, no biarc and no hull; [`QueryTree::from_biarc_tree`]);
     /// `u32::MAX` for trees built from leaves.
@@ -175,6 +181,7 @@ impl QueryTree {
             node_ends: Vec::new(),
             offset: None,
             hulls: Vec::new(),
+            upper_hulls: Vec::new(),
             upper_start: u32::MAX,
             chain_orientation: 1.0,
         };
@@ -244,6 +251,7 @@ impl QueryTree {
             node_ends: Vec::new(),
             offset: None,
             hulls: Vec::new(),
+            upper_hulls: Vec::new(),
             upper_start: u32::MAX,
             chain_orientation: 1.0,
         };
@@ -263,8 +271,16 @@ impl QueryTree {
         if !roots.is_empty() {
             t.root = t.build_upper(&roots);
         }
-        // The upper nodes over the spirals have no biarc.
+        // The upper nodes over the spirals have no biarc: their hulls are unions.
         t.hulls.resize(t.nodes.len(), None);
+        for id in t.upper_start as usize..t.nodes.len() {
+            let [c0, c1] = t.nodes[id].children;
+            let hull = match (t.hull_ref(c0), t.hull_ref(c1)) {
+                (Some(a), Some(b)) => a.union(&b),
+                _ => None,
+            };
+            t.upper_hulls.push(hull);
+        }
         t.index_chain();
         t.offset = detect(&t.chain, t.kind, t.eps);
         t
@@ -379,6 +395,22 @@ impl QueryTree {
             }
         }
         QueryTree::from_leaves(leaves, kind)
+    }
+
+    /// The hull of node `n`: its fat biarc's, or for a node over several spirals the union
+    /// of theirs; `None` without one.
+    pub fn hull_ref(&self, n: u32) -> Option<HullRef<'_>> {
+        if self.over_spirals(n) {
+            self.upper_hulls
+                .get((n - self.upper_start) as usize)
+                .and_then(Option::as_ref)
+                .map(HullRef::Upper)
+        } else {
+            self.hulls
+                .get(n as usize)
+                .and_then(Option::as_ref)
+                .map(HullRef::Node)
+        }
     }
 
     /// Whether node `n` is in the upper level over a biarc tree's spirals: its disk is around
@@ -500,19 +532,24 @@ mod tests {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
-    /// Every node's hull contains, up to its growth, the patches of every leaf below it up
-    /// to that leaf's eps (hence the original curve, which is within the leaf eps of its
-    /// patches): dense samples of the patches on the paper models at two eps.
+    /// Every node's hull (a fat biarc's, or over several spirals their union's) contains, up
+    /// to its growth, the patches of every leaf below it up to that leaf's eps (hence the
+    /// original curve, which is within the leaf eps of its patches): dense samples of the
+    /// patches on the paper models at two eps.
     #[test]
     fn node_hulls_contain_the_pieces_below() {
         for name in ["pawn", "cup", "bottle", "table", "lightmill"] {
             for eps in [1e-2, 1e-4] {
                 let s = Solid::from_profile(Arc::new(model(name).unwrap()), eps).unwrap();
                 let t = &s.tree;
-                let mut checked = 0;
-                for (id, hull) in t.hulls.iter().enumerate() {
-                    let Some(h) = hull else { continue };
-                    let pts = &h.points_for_tests();
+                let (mut checked, mut upper) = (0, 0);
+                for id in 0..t.nodes.len() {
+                    let Some(hull) = t.hull_ref(id as u32) else {
+                        continue;
+                    };
+                    upper += usize::from(t.over_spirals(id as u32));
+                    let (pts, grow) = hull.points_and_grow_for_tests();
+                    let pts = &pts;
                     let mut stack = vec![id as u32];
                     while let Some(n) = stack.pop() {
                         let node = &t.nodes[n as usize];
@@ -525,9 +562,8 @@ mod tests {
                                 let x = p.arc.point_at(i as f64 / 64.0);
                                 let d = hull_distance(x, pts);
                                 assert!(
-                                    d <= h.grow + node.eps + 1e-12,
-                                    "{name} eps {eps} node {id}: {d} > {} + {}",
-                                    h.grow,
+                                    d <= grow + node.eps + 1e-12,
+                                    "{name} eps {eps} node {id}: {d} > {grow} + {}",
                                     node.eps
                                 );
                             }
@@ -536,6 +572,7 @@ mod tests {
                     checked += 1;
                 }
                 assert!(checked >= 3, "{name}: {checked} hulls");
+                assert!(upper >= 2, "{name}: {upper} hulls over spirals");
             }
         }
     }
