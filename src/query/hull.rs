@@ -317,10 +317,12 @@ impl<const N: usize> ParallelHull<N> {
         (v, p)
     }
 
+    /// An upper bound of the hull's points' distance from the origin (the larger `|rho| +
+    /// |z|`: no square roots), the scale of the rounding slack.
     fn size(&self) -> f64 {
         self.points[..self.len]
             .iter()
-            .map(|m| m.coords.norm())
+            .map(|m| m.x.abs() + m.y.abs())
             .fold(0.0, f64::max)
     }
 
@@ -347,7 +349,12 @@ impl<const N: usize> ParallelHull<N> {
         dir: &Vector3<f64>,
         enough: f64,
     ) -> f64 {
-        self.bound_and_witness(other, pos_ab, dir, enough, false).0
+        let cap = if enough.is_finite() {
+            MAX_ITERATIONS
+        } else {
+            UNBOUNDED_ITERATIONS
+        };
+        self.bound_capped(other, pos_ab, dir, enough, cap)
     }
 
     /// [`ParallelHull::bound_until`] after at most `cap` support points.
@@ -359,10 +366,8 @@ impl<const N: usize> ParallelHull<N> {
         enough: f64,
         cap: usize,
     ) -> f64 {
-        let t = pos_ab.translation.vector;
-        let scale = 1.0 + t.norm() + self.size() + other.size();
-        let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        hull_separation(self, other, pos_ab, dir, enough + slack, cap, true, GAP_REL).0 - slack
+        self.separation(other, pos_ab, dir, Stop::bound(enough, cap))
+            .0
     }
 
     /// [`ParallelHull::bound_until`] with the hulls' nearest points found by the
@@ -383,20 +388,12 @@ impl<const N: usize> ParallelHull<N> {
         } else {
             UNBOUNDED_ITERATIONS
         };
-        let t = pos_ab.translation.vector;
-        let scale = 1.0 + t.norm() + self.size() + other.size();
-        let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        let (lower, witness) = hull_separation(
-            self,
-            other,
-            pos_ab,
-            dir,
-            enough + slack,
-            cap,
-            !converge,
-            GAP_REL,
-        );
-        (lower - slack, witness)
+        let stop = Stop {
+            give_up: !converge,
+            witness: true,
+            ..Stop::bound(enough, cap)
+        };
+        self.separation(other, pos_ab, dir, stop)
     }
 
     /// The bound of [`ParallelHull::bound_and_witness`] with the hulls' nearest points to
@@ -410,38 +407,81 @@ impl<const N: usize> ParallelHull<N> {
         dir: &Vector3<f64>,
         enough: f64,
     ) -> (f64, Option<PointPair>) {
+        let stop = Stop {
+            give_up: false,
+            gap: WITNESS_GAP_REL,
+            witness: true,
+            ..Stop::bound(enough, MAX_ITERATIONS)
+        };
+        self.separation(other, pos_ab, dir, stop)
+    }
+
+    /// [`hull_separation`] with the hulls' growth and the rounding slack subtracted.
+    fn separation<const M: usize>(
+        &self,
+        other: &ParallelHull<M>,
+        pos_ab: &Isometry3<f64>,
+        dir: &Vector3<f64>,
+        stop: Stop,
+    ) -> (f64, Option<PointPair>) {
         let t = pos_ab.translation.vector;
         let scale = 1.0 + t.norm() + self.size() + other.size();
         let slack = self.grow + other.grow + BOUND_SLACK * scale;
-        let (lower, witness) = hull_separation(
-            self,
-            other,
-            pos_ab,
-            dir,
-            enough + slack,
-            MAX_ITERATIONS,
-            false,
-            WITNESS_GAP_REL,
-        );
+        let stop = Stop {
+            enough: stop.enough + slack,
+            ..stop
+        };
+        let (lower, witness) = hull_separation(self, other, pos_ab, dir, &stop);
         (lower - slack, witness)
     }
 }
 
+/// When a hull iteration ([`hull_separation`]) stops.
+#[derive(Debug, Clone, Copy)]
+struct Stop {
+    /// Stop once the bound reaches this.
+    enough: f64,
+    /// Support points at most.
+    cap: usize,
+    /// Stop once `enough` is out of reach (a point of the Minkowski difference is nearer).
+    give_up: bool,
+    /// Converged once the bound is within this fraction of the hulls' distance.
+    gap: f64,
+    /// The nearest points are wanted: the simplex is updated after the last support point.
+    witness: bool,
+}
+
+impl Stop {
+    /// A bound alone, to `enough`, after at most `cap` support points.
+    fn bound(enough: f64, cap: usize) -> Stop {
+        Stop {
+            enough,
+            cap,
+            give_up: true,
+            gap: GAP_REL,
+            witness: false,
+        }
+    }
+}
+
 /// A lower bound of the distance between the hulls of `a` (frame A) and `b` (placed by
-/// `pos_ab`), iterated from direction `dir` until it reaches `enough`, converges, or has
-/// computed `cap` support points (module doc); with `give_up`, also once `enough` is out
-/// of reach. Converged means within `gap` (relative) of the hulls' distance.
-#[allow(clippy::too_many_arguments)]
+/// `pos_ab`), iterated from direction `dir` until it reaches `stop.enough`, converges (to
+/// `stop.gap`), or has computed `stop.cap` support points (module doc); with
+/// `stop.give_up`, also once `enough` is out of reach.
 fn hull_separation<const N: usize, const M: usize>(
     a: &ParallelHull<N>,
     b: &ParallelHull<M>,
     pos_ab: &Isometry3<f64>,
     dir: &Vector3<f64>,
-    enough: f64,
-    cap: usize,
-    give_up: bool,
-    gap: f64,
+    stop: &Stop,
 ) -> (f64, Option<PointPair>) {
+    let Stop {
+        enough,
+        cap,
+        give_up,
+        gap,
+        witness,
+    } = *stop;
     // The rotation as a matrix once: each step rotates a direction and a point (a matrix
     // product is cheaper than the quaternion's).
     let rot_ab = pos_ab.rotation.to_rotation_matrix();
@@ -471,7 +511,9 @@ fn hull_separation<const N: usize, const M: usize>(
         // above: below a finite `enough`, no direction can prove `enough`.
         let hopeless = give_up && enough.is_finite() && vn < enough;
         let converged = step > 0 && (hopeless || vn - lower <= gap * vn);
-        if best >= enough || converged {
+        // Without the nearest points, the simplex step after the last support point is
+        // wasted (one step of a node key over spirals is most of its cost).
+        if best >= enough || converged || (step + 1 == cap && !witness) {
             break;
         }
         if !simplex.push(w, pair) {
