@@ -119,7 +119,15 @@ impl SpanCurve<'_> {
     pub fn one_sided_derivative(&self, u: f64, leaving: bool) -> (Vector2<f64>, f64) {
         let (_, d) = self.point_and_derivative(u);
         let n = self.homogeneous.len() - 1;
-        if n == 0 || u <= 0.0 || u >= 1.0 || d.norm() > STATIONARY_REL * self.hodograph_size() {
+        if n == 0 || d.norm() > STATIONARY_REL * self.hodograph_size() {
+            return (d, 0.0);
+        }
+        // At a span end (a knot placed on the stationary point) the span itself is the half.
+        if (u <= 0.0 && leaving) || (u >= 1.0 && !leaving) {
+            let skip = 2.0 * STATIONARY_REL * self.hodograph_size() / n as f64;
+            return (self.end_tangent_limit(leaving, skip), d.norm());
+        }
+        if u <= 0.0 || u >= 1.0 {
             return (d, 0.0);
         }
         let mut half = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];

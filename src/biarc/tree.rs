@@ -241,6 +241,17 @@ impl PieceCurve<'_> {
         (curve, ((t - r.t0) / len).clamp(0.0, 1.0), len)
     }
 
+    /// [`Self::locate`], but at a span boundary the span that ends there.
+    fn locate_before(&self, t: f64) -> (SpanCurve<'_>, f64, f64) {
+        let i = self.spans.partition_point(|r| r.t0 < t).saturating_sub(1);
+        let r = &self.spans[i];
+        let len = r.t1 - r.t0;
+        let curve = SpanCurve {
+            homogeneous: &self.coeffs[r.offset as usize..(r.offset + r.len) as usize],
+        };
+        (curve, ((t - r.t0) / len).clamp(0.0, 1.0), len)
+    }
+
     fn curvature(&self, t: f64) -> f64 {
         let (c, u, _) = self.locate(t);
         c.curvature(u)
@@ -253,7 +264,12 @@ impl PieceCurve<'_> {
     /// first-order term `|C'| dt` moves the curve by at most `|C'| (t1 - t0)` over the spiral
     /// `[t0, t1]`, which is returned as the slack (zero where nothing was dropped).
     fn end_sample(&self, t: f64, leaving: bool, span_of_spiral: f64) -> (CurveSample, f64) {
-        let (c, u, len) = self.locate(t);
+        // Arriving at a knot, the span that ends there (the curve before it), not the next.
+        let (c, u, len) = if leaving {
+            self.locate(t)
+        } else {
+            self.locate_before(t)
+        };
         let (point, _) = c.point_and_derivative(u);
         let (derivative, dropped) = c.one_sided_derivative(u, leaving);
         (

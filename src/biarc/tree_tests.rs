@@ -324,6 +324,23 @@ degree = 1
 knots = [0.0, 0.0, 1.0, 1.0]
 points = [[1.0, 0.5], [0.5, 0.0]]
 "#,
+        // The retrace with a knot inserted at its stationary parameter (Boehm): the zero
+        // speed now sits at a span boundary (found by the stationary-point property test).
+        r#"
+name = "retrace-knot"
+[[piece]]
+degree = 3
+knots = [0.0, 0.0, 0.0, 0.0, 0.04458779620677098, 1.0, 1.0, 1.0, 1.0]
+points = [[0.5, 0.0], [0.5, -4.4587796206770984e-05], [0.5, -0.001044587796206771], [0.5, 0.02038307369579903], [0.5, 0.5]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[0.5, 0.5], [1.0, 0.5]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[1.0, 0.5], [0.5, 0.0]]
+"#,
         // Semicubical cusp: (0.5 + 0.3 s^2, 0.5 + 0.3 s^3) for s in [-1, 1], t = (s + 1) / 2.
         r#"
 name = "cusp"
