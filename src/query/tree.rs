@@ -140,11 +140,11 @@ pub struct QueryTree {
     /// The solid is a ball or a solid torus (the chain is one circle): queries between two
     /// such solids take the closed form of [`super::offset`] instead of a traversal.
     pub offset: Option<OffsetSolid>,
-    /// Per node, a hull of parallels that contains its original curve piece's surface up to
-    /// its `grow` (the node's own biarc chords, grown by their sagittas and the biarc's
-    /// bound; paper 4.1's fat biarcs), for the node-pair hull bound
-    /// ([`super::bounds::ParallelHull::bound`]). `None` for nodes without a biarc (the upper
-    /// level over the spirals, trees built from leaves) or with an arc above a half turn.
+    /// Per node below the upper level, a hull of parallels that contains its original curve
+    /// piece's surface up to its `grow` (the node's own biarc chords, grown by their
+    /// sagittas and the biarc's bound; paper 4.1's fat biarcs), for the node-pair hull bound
+    /// ([`super::bounds::ParallelHull::bound`]). `None` for nodes with an arc above a half
+    /// turn; empty for trees built from leaves; the upper level has [`Self::upper_hulls`].
     pub hulls: Vec<Option<NodeHull>>,
     /// Per node of the upper level over the spirals (index `node - upper_start`), the hull
     /// of the spirals' node hulls below it ([`UpperHull`], [`super::hull::ParallelHull::union_of`]) when
@@ -271,8 +271,9 @@ impl QueryTree {
         if !roots.is_empty() {
             t.root = t.build_upper(&roots);
         }
-        // The upper nodes over the spirals have no biarc: their hulls are unions.
-        t.hulls.resize(t.nodes.len(), None);
+        // The upper nodes over the spirals have no biarc: their hulls are unions, kept apart
+        // (`hulls` covers the spirals' nodes only).
+        t.hulls.truncate(t.upper_start as usize);
         for id in t.upper_start as usize..t.nodes.len() {
             let [c0, c1] = t.nodes[id].children;
             let hull = match (t.hull_ref(c0), t.hull_ref(c1)) {
