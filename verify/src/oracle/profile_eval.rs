@@ -84,7 +84,20 @@ impl HomSpline {
         let p = self.degree;
         let n = self.ctrl.len();
         let t = t.clamp(self.knots[p], self.knots[n]);
-        let k = self.span(t);
+        self.de_boor(self.span(t), |_| t)
+    }
+
+    /// The blossom of the polynomial on knot span `k` at the `p` arguments `us` (de Boor's
+    /// algorithm with the argument `us[r - 1]` at level `r`): with `p - i` copies of `ta`
+    /// and `i` of `tb` it is the `i`-th Bezier control point of the curve on `[ta, tb]`.
+    fn blossom(&self, k: usize, us: &[f64]) -> [f64; 3] {
+        self.de_boor(k, |r| us[r - 1])
+    }
+
+    /// de Boor's triangle on knot span `k` with the argument `arg(r)` at level `r` (the same
+    /// argument at every level evaluates the curve; different ones give its blossom).
+    fn de_boor(&self, k: usize, arg: impl Fn(usize) -> f64) -> [f64; 3] {
+        let p = self.degree;
         let mut d = [[0.0; 3]; 8];
         let mut dv: Vec<[f64; 3]>;
         let buf: &mut [[f64; 3]] = if p < 8 {
@@ -97,31 +110,7 @@ impl HomSpline {
             *b = self.ctrl[j + k - p];
         }
         for r in 1..=p {
-            for j in (r..=p).rev() {
-                let i = j + k - p;
-                let den = self.knots[i + p + 1 - r] - self.knots[i];
-                let alpha = if den > 0.0 {
-                    (t - self.knots[i]) / den
-                } else {
-                    0.0
-                };
-                let prev = buf[j - 1];
-                for (v, pv) in buf[j].iter_mut().zip(prev) {
-                    *v = (1.0 - alpha) * pv + alpha * *v;
-                }
-            }
-        }
-        buf[p]
-    }
-
-    /// The blossom of the polynomial on knot span `k` at the `p` arguments `us` (de Boor's
-    /// algorithm with the argument `us[r - 1]` at level `r`): with `p - i` copies of `ta`
-    /// and `i` of `tb` it is the `i`-th Bezier control point of the curve on `[ta, tb]`.
-    fn blossom(&self, k: usize, us: &[f64]) -> [f64; 3] {
-        let p = self.degree;
-        let mut buf: Vec<[f64; 3]> = (0..=p).map(|j| self.ctrl[j + k - p]).collect();
-        for r in 1..=p {
-            let t = us[r - 1];
+            let t = arg(r);
             for j in (r..=p).rev() {
                 let i = j + k - p;
                 let den = self.knots[i + p + 1 - r] - self.knots[i];
