@@ -119,17 +119,15 @@ impl SpanCurve<'_> {
     pub fn one_sided_derivative(&self, u: f64, leaving: bool) -> (Vector2<f64>, f64) {
         let (_, d) = self.point_and_derivative(u);
         let n = self.homogeneous.len() - 1;
-        if n == 0 || d.norm() > STATIONARY_REL * self.hodograph_size() {
+        let size = self.hodograph_size();
+        // The share of the span on the wanted side; none at its far end (the neighbouring
+        // span holds that side).
+        let share = if leaving { 1.0 - u } else { u };
+        if n == 0 || d.norm() > STATIONARY_REL * size || share <= 0.0 {
             return (d, 0.0);
         }
-        // At a span end (a knot placed on the stationary point) the span itself is the half.
-        if (u <= 0.0 && leaving) || (u >= 1.0 && !leaving) {
-            let skip = 2.0 * STATIONARY_REL * self.hodograph_size() / n as f64;
-            return (self.end_tangent_limit(leaving, skip), d.norm());
-        }
-        if u <= 0.0 || u >= 1.0 {
-            return (d, 0.0);
-        }
+        // At a span end (a knot placed on the stationary point) the half is the span itself:
+        // de Casteljau at u = 0 or 1 returns its points unchanged.
         let mut half = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
         half_at(self.homogeneous, u, leaving, &mut half[..=n]);
         let piece = SpanCurve {
@@ -137,8 +135,7 @@ impl SpanCurve<'_> {
         };
         // The half's first leg is `|C'(u)|` times its share of the span over `n`: skip it (and
         // any leg as short) with a factor 2 for rounding, so its noisy direction is never read.
-        let share = if leaving { 1.0 - u } else { u };
-        let skip = 2.0 * share * STATIONARY_REL * self.hodograph_size() / n as f64;
+        let skip = 2.0 * share * STATIONARY_REL * size / n as f64;
         let limit = piece.end_tangent_limit(leaving, skip) / share;
         (limit, d.norm())
     }

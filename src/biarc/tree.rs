@@ -232,19 +232,18 @@ struct PieceCurve<'a> {
 impl PieceCurve<'_> {
     /// The span holding `t` (the last one whose start is <= t) and its local parameter.
     fn locate(&self, t: f64) -> (SpanCurve<'_>, f64, f64) {
-        let i = self.spans.partition_point(|r| r.t0 <= t).saturating_sub(1);
-        let r = &self.spans[i];
-        let len = r.t1 - r.t0;
-        let curve = SpanCurve {
-            homogeneous: &self.coeffs[r.offset as usize..(r.offset + r.len) as usize],
-        };
-        (curve, ((t - r.t0) / len).clamp(0.0, 1.0), len)
+        self.span_at(self.spans.partition_point(|r| r.t0 <= t), t)
     }
 
     /// [`Self::locate`], but at a span boundary the span that ends there.
     fn locate_before(&self, t: f64) -> (SpanCurve<'_>, f64, f64) {
-        let i = self.spans.partition_point(|r| r.t0 < t).saturating_sub(1);
-        let r = &self.spans[i];
+        self.span_at(self.spans.partition_point(|r| r.t0 < t), t)
+    }
+
+    /// The span before index `after` (the first after it when `after` is 0), `t`'s local
+    /// parameter in it, and its parameter length.
+    fn span_at(&self, after: usize, t: f64) -> (SpanCurve<'_>, f64, f64) {
+        let r = &self.spans[after.saturating_sub(1)];
         let len = r.t1 - r.t0;
         let curve = SpanCurve {
             homogeneous: &self.coeffs[r.offset as usize..(r.offset + r.len) as usize],

@@ -80,6 +80,12 @@ pub fn sphere_bound(da: &Disk, db: &Disk, pos_ab: &Isometry3<f64>) -> f64 {
     ss.max(st).max(ts) - BOUND_SLACK * scale
 }
 
+/// The direction from A's disk's axis point `(0, 0, c_z)` to B's (A's frame): where the
+/// hull iterations between the contents of two disks start.
+pub fn axis_direction(da: &Disk, db: &Disk, pos_ab: &Isometry3<f64>) -> Vector3<f64> {
+    pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y)
+}
+
 /// B's axis direction in A's frame: the third column of `pos_ab`'s rotation, from the unit
 /// quaternion `(w, x, y, z)` as `(2 (xz + wy), 2 (yz - wx), 1 - 2 (x^2 + y^2))`.
 fn axis_of(pos_ab: &Isometry3<f64>) -> Vector3<f64> {
@@ -234,8 +240,7 @@ pub fn node_pair_bound(
         return s;
     }
     if let Some((ha, hb)) = hulls {
-        let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
-        s = s.max(ha.bound_until(hb, pos_ab, &dir, prune_above));
+        s = s.max(ha.bound_until(hb, pos_ab, &axis_direction(da, db, pos_ab), prune_above));
         if s >= prune_above {
             return s;
         }

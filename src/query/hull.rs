@@ -547,20 +547,18 @@ fn convex_hull_2d(pts: &mut [Point2<f64>]) -> Vec<Point2<f64>> {
         (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
     };
     let mut hull: Vec<Point2<f64>> = Vec::with_capacity(pts.len() + 1);
+    // The lower chain left to right, then the upper chain right to left.
+    let m = pts.len();
     for pass in 0..2 {
         let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for p in iter {
+        for k in 0..m {
+            let p = pts[if pass == 0 { k } else { m - 1 - k }];
             while hull.len() >= start + 2
-                && turn(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0
+                && turn(&hull[hull.len() - 2], &hull[hull.len() - 1], &p) <= 0.0
             {
                 hull.pop();
             }
-            hull.push(*p);
+            hull.push(p);
         }
         hull.pop();
     }

@@ -220,10 +220,10 @@ impl<'q> LeafPair<'q> {
         let mut r = LeafResult::empty();
         let mut best_pair = None;
         let mut lowers: Vec<(PatchLower, u32, u32)> = Vec::with_capacity(4);
+        let precision = self.hull_precision(na, nb);
         for (ia, ib) in self.patch_ranges(na, nb) {
             let (pa, pb) = self.patches(ia, ib);
             r.patch_bounds += 1;
-            let precision = self.hull_precision(na, nb);
             let mut lower = patch_lower(pa, pb, self.pos_ab, prune_at, precision, &mut self.cores);
             if lower.lower <= 0.0 {
                 // The pieces' tori overlap, which near contact mostly means a long or flat

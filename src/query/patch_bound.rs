@@ -22,7 +22,9 @@
 //! in general position) and a few planar closest-point evaluations.
 
 use super::binormal_kernel::{as_circle3, parallel_circle};
-use super::bounds::{shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK};
+use super::bounds::{
+    axis_direction, shell_bound, slab_bound_in, sphere_bound, torus_bound, BOUND_SLACK,
+};
 use super::hull::{hull_bound_and_witness, PieceHull, PointPair};
 use super::line_field::{line_field_critical, line_field_levels};
 use super::patch::{Patch, ProfileArc};
@@ -154,7 +156,7 @@ pub fn patch_lower(
     let hulls = PieceHull::of_piece(&a.arc).zip(PieceHull::of_piece(&b.arc));
     let mut early = None;
     if let (true, Some((ha, hb))) = (prune_at.is_finite(), &hulls) {
-        let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y) - Point3::new(0.0, 0.0, da.center.y);
+        let dir = axis_direction(&da, &db, pos_ab);
         // The hulls' nearest points are wanted when they will stand in for the tori's
         // (hulls within `precision` of the pieces) or when nothing else gives near points
         // (two cones): the iteration then runs on below the level instead of giving up. For

@@ -12,7 +12,7 @@
 //! pair popped again gets the exact solve and becomes resolved; popping a resolved pair
 //! means nothing can be refined further.
 
-use super::bounds::{node_pair_bound, sphere_bound, BoundKind};
+use super::bounds::{axis_direction, node_pair_bound, sphere_bound, BoundKind};
 use super::leaf::{LeafPair, LeafResult};
 use super::tree::{Disk, QueryTree};
 use nalgebra::{Isometry3, Point3};
@@ -163,11 +163,6 @@ fn node_key(
     parent: f64,
     prune_at: f64,
 ) -> f64 {
-    let hulls = ta
-        .hulls
-        .get(a as usize)
-        .and_then(Option::as_ref)
-        .zip(tb.hulls.get(b as usize).and_then(Option::as_ref));
     // A node over several spirals (the tree's upper level: no biarc) has a disk around all
     // of them, whose solid torus is about as fat as its sphere: the torus is not tried (the
     // check that skips one that cannot reach the level cost more there than the few tori
@@ -184,14 +179,18 @@ fn node_key(
         }
         let hull = match (ta.hull_ref(a), tb.hull_ref(b)) {
             (Some(ha), Some(hb)) => {
-                let dir = pos_ab * Point3::new(0.0, 0.0, db.center.y)
-                    - Point3::new(0.0, 0.0, da.center.y);
+                let dir = axis_direction(da, db, pos_ab);
                 ha.bound_capped(&hb, pos_ab, &dir, prune_at, UPPER_HULL_STEPS)
             }
             _ => f64::NEG_INFINITY,
         };
         return parent.max(s.max(hull));
     }
+    let hulls = ta
+        .hulls
+        .get(a as usize)
+        .and_then(Option::as_ref)
+        .zip(tb.hulls.get(b as usize).and_then(Option::as_ref));
     parent.max(node_pair_bound(da, db, pos_ab, kind, prune_at, hulls))
 }
 
