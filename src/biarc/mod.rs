@@ -18,7 +18,9 @@ mod tree_tests;
 
 pub use arc::Arc;
 pub use fit::{fit_biarc, CurveSample, FittedBiarc, PlanarCurve};
-pub use tree::{BiarcNode, BiarcTree, Disk, NodeId, SpiralInfo, TreeError, TreeStats, UpperNode};
+pub use tree::{
+    BiarcNode, BiarcTree, Disk, NodeId, SpiralBound, SpiralInfo, TreeError, TreeStats, UpperNode,
+};
 
 /// Errors of biarc fitting, spiral segmentation and tree building.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

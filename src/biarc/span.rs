@@ -201,6 +201,21 @@ impl SpanCurve<'_> {
     }
 }
 
+impl SpanCurve<'_> {
+    /// The homogeneous control points of the part `[u0, u1]` of the span (`0 <= u0 < u1 <= 1`),
+    /// by two de Casteljau cuts, written into `out` (`degree + 1` entries). The part lies in
+    /// the convex hull of these points (positive weights), which gives a bound that needs no
+    /// spiral property ([`crate::biarc::tree`]'s chord nodes).
+    pub fn part(&self, u0: f64, u1: f64, out: &mut [[f64; 3]]) {
+        let n = self.homogeneous.len() - 1;
+        let mut below = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
+        half_at(self.homogeneous, u1, false, &mut below[..=n]);
+        // u0 in the parameter of [0, u1]
+        let v = if u1 > 0.0 { (u0 / u1).min(1.0) } else { 0.0 };
+        half_at(&below[..=n], v, true, out);
+    }
+}
+
 /// Runs de Casteljau on `q` down to two points and returns them.
 #[inline]
 fn last_two(q: &mut [[f64; 3]], u: f64, v: f64) -> ([f64; 3], [f64; 3]) {

@@ -99,22 +99,49 @@ fn push_roots(p: &Bernstein, scale: f64, reason: SplitReason, out: &mut Vec<(f64
 /// Interior split parameters (local `u` in (0, 1), sorted, merged within [`MIN_SPLIT_GAP`]) that
 /// cut the span with homogeneous Bernstein coefficients `h` into short spirals.
 pub fn spiral_splits(h: &[[f64; 3]]) -> Vec<(f64, SplitReason)> {
+    split_span(h).splits
+}
+
+/// The spiral splits of a span ([`spiral_splits`]) and whether its curvature numerator `D`
+/// was dismissed as rounding noise.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpanSplits {
+    /// Interior split parameters, as [`spiral_splits`] returns them.
+    pub splits: Vec<(f64, SplitReason)>,
+    /// True when the span has degree >= 2 and `D` is below [`SPLIT_NOISE_REL`] of its terms:
+    /// straight to working precision, so neither inflections nor curvature extrema split it.
+    /// Such a span may still bend by up to that noise level (a line whose control points are
+    /// perturbed by 1e-11), and an unsplit inflection breaks the spiral property the bilens
+    /// bound needs; the tree bounds it by its control polygon instead.
+    pub straight_within_noise: bool,
+}
+
+/// [`spiral_splits`] with the straightness flag of [`SpanSplits`].
+pub fn split_span(h: &[[f64; 3]]) -> SpanSplits {
     let mut out = Vec::new();
     if h.len() < 3 {
-        return out; // degree <= 1: a segment, already a spiral
+        // degree <= 1: a segment, already a spiral
+        return SpanSplits {
+            splits: out,
+            straight_within_noise: false,
+        };
     }
     let w0 = h[0][2];
-    if h.iter().all(|p| p[2] == w0) {
-        polynomial_splits(h, w0, &mut out);
+    let straight = if h.iter().all(|p| p[2] == w0) {
+        polynomial_splits(h, w0, &mut out)
     } else {
-        rational_splits(h, &mut out);
+        rational_splits(h, &mut out)
+    };
+    SpanSplits {
+        splits: merge(out),
+        straight_within_noise: straight,
     }
-    merge(out)
 }
 
 /// Polynomial span (all weights equal): `rho' = x'`, `z' = y'`, `D = x'y'' - y'x''`,
-/// `K = 2 D' S - 3 D S'` with `S = x'^2 + y'^2` (degree 4n - 6 instead of 8n - 6).
-fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>) {
+/// `K = 2 D' S - 3 D S'` with `S = x'^2 + y'^2` (degree 4n - 6 instead of 8n - 6). Returns
+/// whether `D` is noise (straight).
+fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>) -> bool {
     let x = Bernstein::new(h.iter().map(|p| p[0] / w0).collect());
     let y = Bernstein::new(h.iter().map(|p| p[1] / w0).collect());
     let (xd, yd) = (x.derivative(), y.derivative());
@@ -124,7 +151,7 @@ fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>)
     push_roots(&yd, scale, SplitReason::ZExtremum, out);
     let (d, d_scale) = cross_diff(&xd, &ydd, &yd, &xdd);
     if d.is_negligible(SPLIT_NOISE_REL * d_scale) {
-        return; // straight
+        return true; // straight
     }
     push_roots(&d, d_scale, SplitReason::Inflection, out);
     let s = combine(&xd.product(&xd), 1.0, &yd.product(&yd), 1.0);
@@ -133,10 +160,11 @@ fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>)
     let k_scale = (2.0 * lhs.max_abs_coeff()).max(3.0 * rhs.max_abs_coeff());
     let k = combine(&lhs, 2.0, &rhs, -3.0);
     push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
+    false
 }
 
-/// Rational span: the homogeneous formulas of the module doc.
-fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) {
+/// Rational span: the homogeneous formulas of the module doc. Returns whether `D` is noise.
+fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) -> bool {
     let (x, y, w) = (coord(h, 0), coord(h, 1), coord(h, 2));
     let (xd, yd, wd) = (x.derivative(), y.derivative(), w.derivative());
     let (xdd, ydd, wdd) = (xd.derivative(), yd.derivative(), wd.derivative());
@@ -156,7 +184,7 @@ fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) {
         + w.max_abs_coeff() * (s2 + m2.max_abs_coeff());
     let d = combine(&combine(&t0, 1.0, &t1, -1.0), 1.0, &t2, 1.0);
     if d.is_negligible(SPLIT_NOISE_REL * d_scale) {
-        return; // straight
+        return true; // straight
     }
     push_roots(&d, d_scale, SplitReason::Inflection, out);
 
@@ -169,6 +197,7 @@ fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) {
     let k_scale = lhs.max_abs_coeff().max(3.0 * rhs.max_abs_coeff());
     let k = combine(&lhs, 1.0, &rhs, -3.0);
     push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
+    false
 }
 
 fn merge(mut v: Vec<(f64, SplitReason)>) -> Vec<(f64, SplitReason)> {

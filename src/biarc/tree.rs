@@ -6,11 +6,21 @@
 //! (the two children of a node are adjacent), and [`BiarcTree::rebuild`] refills the same
 //! vectors, so rebuilding a deforming profile allocates nothing once capacities have grown.
 //!
+//! **Two kinds of spiral** ([`SpiralBound`]). A spiral's nodes are biarcs with the bilens bound
+//! when the piece is a short spiral. Where rounding cannot establish that, the nodes are chords
+//! (two collinear segments) bounded by the piece's control polygon, which needs no spiral
+//! property and converges quadratically instead of cubically: a span straight only to
+//! working precision (its curvature below the split's noise test, so an inflection may hide
+//! in it), and any spiral on which the biarc build fails (no minor-arc biarc, a zero tangent,
+//! a joint that is not G1: near-stationary points, micro-spirals between two rounded roots,
+//! fins that rounding bends). The built-in exact models have none; the freeform ones and
+//! M_t frames a few straight spans, which are single chords either way.
+//!
 //! **What a node guarantees** (all in the (rho, z) half-plane, all two-sided where stated):
 //! - [`BiarcNode::eps`]: the two-sided Hausdorff distance between the node's curve piece and its
-//!   biarc is at most `eps` (bilens bound, [`super::bound`]), and so is the distance to the
-//!   biarc with its near-straight arcs replaced by chords (their sagitta is added;
-//!   [`super::arc::FLAT_RADIUS_REL`]).
+//!   biarc is at most `eps` (bilens bound, [`super::bound`], or the control-polygon bound of a
+//!   chord node), and so is the distance to the biarc with its near-straight arcs replaced by
+//!   chords (their sagitta is added; [`super::arc::FLAT_RADIUS_REL`]).
 //! - [`BiarcNode::bounding_disk`]: the curve piece lies inside the disk.
 //! - [`BiarcNode::chord`] with [`BiarcNode::chord_distance`]: every point of the curve piece is
 //!   within `chord_distance` of the chord segment (the paper's "line segment that best
@@ -20,9 +30,10 @@
 use nalgebra::{Point2, Vector2};
 
 use super::arc::{cross, Arc};
-use super::fit::{fit_biarc, CurveSample, FittedBiarc, PlanarCurve};
+use super::bound::ulp_slack;
+use super::fit::{fit_biarc, g1_tolerance, CurveSample, PlanarCurve};
 use super::span::{SpanCurve, MAX_SPAN_DEGREE};
-use super::spiral::spiral_splits;
+use super::spiral::split_span;
 use super::BiarcError;
 use crate::nurbs::Aabb2;
 use crate::profile::Profile;
@@ -183,6 +194,28 @@ pub struct SpiralInfo {
     pub aabb: Aabb2,
     /// First and last span (inclusive) of the spiral in the tree's span table.
     spans: (u32, u32),
+    /// How the spiral's node bounds are certified.
+    bound: SpiralBound,
+}
+
+/// How the node bounds of a spiral are certified.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpiralBound {
+    /// Biarcs with the bilens bound (section 4.1): the piece is a short spiral.
+    Bilens,
+    /// Chords with the control-polygon bound: for pieces whose spiral property rounding cannot
+    /// establish (a span straight only to working precision, a piece on which no biarc fits:
+    /// near-stationary points, micro-spirals between two rounded roots). Each curve piece lies
+    /// in the convex hull of its Bezier control points, so their largest distance to the
+    /// chord bounds the two-sided Hausdorff distance (see the module doc).
+    ControlPolygon,
+}
+
+impl SpiralInfo {
+    /// How the spiral's node bounds are certified.
+    pub fn bound(&self) -> SpiralBound {
+        self.bound
+    }
 }
 
 /// A node of the upper AABB hierarchy over spirals.
@@ -251,6 +284,44 @@ impl PieceCurve<'_> {
         (curve, ((t - r.t0) / len).clamp(0.0, 1.0), len)
     }
 
+    /// A two-sided Hausdorff bound between the curve piece `[t0, t1]` and the segment from
+    /// `a` to `b` (its end points as evaluated), needing no spiral property.
+    ///
+    /// Every part of a rational Bezier span with positive weights lies in the convex hull of
+    /// its control points, so each curve point is within `d` = the largest distance from
+    /// those points to the segment (distance to a convex set is convex). Conversely the curve
+    /// runs from `a` to `b` within `d` of the segment's line, so it crosses every normal of
+    /// the segment between them at distance `<= d`. The control points come from two de
+    /// Casteljau cuts per span; their rounding, a few ulps of the homogeneous coordinates per
+    /// level, is covered by [`ulp_slack`] of the coordinates times the weights' spread.
+    fn hull_deviation(&self, t0: f64, t1: f64, a: Point2<f64>, b: Point2<f64>) -> f64 {
+        let mut deviation = 0.0f64;
+        let mut scale = a.coords.amax().max(b.coords.amax());
+        let mut part = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
+        for r in self.spans.iter().filter(|r| r.t1 > t0 && r.t0 < t1) {
+            let len = r.t1 - r.t0;
+            let u0 = ((t0 - r.t0) / len).clamp(0.0, 1.0);
+            let u1 = ((t1 - r.t0) / len).clamp(0.0, 1.0);
+            if u1 <= u0 {
+                continue;
+            }
+            let h = &self.coeffs[r.offset as usize..(r.offset + r.len) as usize];
+            let n = h.len() - 1;
+            SpanCurve { homogeneous: h }.part(u0, u1, &mut part[..=n]);
+            let (w_min, w_max) = part[..=n]
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
+                    (lo.min(p[2]), hi.max(p[2]))
+                });
+            for p in &part[..=n] {
+                let q = Point2::new(p[0] / p[2], p[1] / p[2]);
+                deviation = deviation.max(segment_distance(q, a, b));
+                scale = scale.max(q.coords.amax() * w_max / w_min);
+            }
+        }
+        deviation + ulp_slack(scale)
+    }
+
     fn curvature(&self, t: f64) -> f64 {
         let (c, u, _) = self.locate(t);
         c.curvature(u)
@@ -305,6 +376,9 @@ pub struct BiarcTree {
     /// Radius above which an arc is revolved as its chord ([`crate::biarc::arc::FLAT_RADIUS_REL`]
     /// times the profile size).
     flat_radius: f64,
+    /// The profile's largest coordinate magnitude or bounding-box diagonal, whichever is
+    /// larger: the scale of its coordinates' rounding.
+    coordinate_scale: f64,
     nodes: Vec<BiarcNode>,
     spirals: Vec<SpiralInfo>,
     upper: Vec<UpperNode>,
@@ -327,7 +401,8 @@ impl BiarcTree {
         if !(eps > 0.0 && eps.is_finite()) {
             return Err(TreeError::InvalidEps(eps));
         }
-        let size = profile.bounding_box().diagonal();
+        let bbox = profile.bounding_box();
+        let size = bbox.diagonal();
         if eps < MIN_EPS_REL * size {
             return Err(TreeError::EpsTooSmall {
                 eps,
@@ -335,6 +410,7 @@ impl BiarcTree {
             });
         }
         self.eps = eps;
+        self.coordinate_scale = size.max(bbox.min.coords.amax()).max(bbox.max.coords.amax());
         self.flat_radius = crate::biarc::arc::FLAT_RADIUS_REL * size;
         self.nodes.clear();
         self.spirals.clear();
@@ -396,9 +472,14 @@ impl BiarcTree {
             {
                 continue;
             }
-            let splits = spiral_splits(curve.homogeneous);
+            let split = split_span(curve.homogeneous);
+            let bound = if split.straight_within_noise {
+                SpiralBound::ControlPolygon
+            } else {
+                SpiralBound::Bilens
+            };
             let mut u0 = 0.0;
-            for u1 in splits.iter().map(|s| s.0).chain(std::iter::once(1.0)) {
+            for u1 in split.splits.iter().map(|s| s.0).chain(std::iter::once(1.0)) {
                 let t = |u: f64| r.t0 + (r.t1 - r.t0) * u;
                 let info = SpiralInfo {
                     piece: r.piece as usize,
@@ -409,6 +490,7 @@ impl BiarcTree {
                         max: first,
                     },
                     spans: (si as u32, si as u32),
+                    bound,
                 };
                 let merged = u0 == 0.0
                     && self.spirals.last().is_some_and(|prev| {
@@ -421,6 +503,9 @@ impl BiarcTree {
                     let prev = self.spirals.last_mut().expect("checked above");
                     prev.param_range.1 = info.param_range.1;
                     prev.spans.1 = si as u32;
+                    if bound == SpiralBound::ControlPolygon {
+                        prev.bound = bound;
+                    }
                 } else {
                     self.spirals.push(info);
                 }
@@ -489,7 +574,23 @@ impl BiarcTree {
         }
     }
 
+    /// Builds the node tree of spiral `s`: with biarcs and the bilens bound, or, when the
+    /// spiral is marked [`SpiralBound::ControlPolygon`] or the biarc build fails on it (no
+    /// biarc fits, a zero tangent, or the bound stalls: rounding made a piece that is not a
+    /// short spiral), with chords and the control-polygon bound.
     fn build_spiral(&mut self, s: usize) -> Result<(), TreeError> {
+        let root = self.nodes.len();
+        if self.spirals[s].bound == SpiralBound::Bilens {
+            if self.grow_spiral(s, SpiralBound::Bilens).is_ok() {
+                return Ok(());
+            }
+            self.nodes.truncate(root);
+            self.spirals[s].bound = SpiralBound::ControlPolygon;
+        }
+        self.grow_spiral(s, SpiralBound::ControlPolygon)
+    }
+
+    fn grow_spiral(&mut self, s: usize, kind: SpiralBound) -> Result<(), TreeError> {
         let info = self.spirals[s];
         let piece = info.piece;
         let root = self.nodes.len() as u32;
@@ -515,14 +616,35 @@ impl BiarcTree {
                 spans: &self.spans[s0..=s1],
                 coeffs: &self.coeffs,
             };
-            let fit = fit_biarc(&curve, &job.a, &job.b)
-                .map_err(|source| TreeError::Fit { piece, source })?;
-            // Bound of the curve piece against the biarc as the query revolves it (flat arcs
-            // as chords): bilens bound plus the largest chord/arc distance.
-            let flat = fit.arcs[0]
-                .flattening_error(self.flat_radius)
-                .max(fit.arcs[1].flattening_error(self.flat_radius));
-            let bound = fit.eps + flat + stationary_slack;
+            let (arcs, bound) = match kind {
+                SpiralBound::Bilens => {
+                    let fit = fit_biarc(&curve, &job.a, &job.b)
+                        .map_err(|source| TreeError::Fit { piece, source })?;
+                    // On a short spiral the J-circle crosses the curve and the joint is G1 to
+                    // rounding; a larger defect means no crossing was found, so rounding made
+                    // the piece something else and its bilens bound is not certain.
+                    if fit.joint_defect() > g1_tolerance(&fit, self.coordinate_scale) {
+                        return Err(TreeError::Fit {
+                            piece,
+                            source: BiarcError::NotASpiral {
+                                t0: job.a.t,
+                                t1: job.b.t,
+                            },
+                        });
+                    }
+                    // Bound of the curve piece against the biarc as the query revolves it
+                    // (flat arcs as chords): bilens bound plus the largest chord/arc distance.
+                    let flat = fit.arcs[0]
+                        .flattening_error(self.flat_radius)
+                        .max(fit.arcs[1].flattening_error(self.flat_radius));
+                    (fit.arcs, fit.eps + flat + stationary_slack)
+                }
+                SpiralBound::ControlPolygon => {
+                    let (a, b) = (job.a.point, job.b.point);
+                    let deviation = curve.hull_deviation(job.a.t, job.b.t, a, b);
+                    chord_arcs(a, b, deviation)
+                }
+            };
             let leaf = bound <= self.eps;
             if !leaf && job.depth >= MAX_DEPTH {
                 return Err(TreeError::BoundNotReached {
@@ -530,7 +652,7 @@ impl BiarcTree {
                     reached: bound,
                 });
             }
-            let mut node = make_node(&fit, bound, s as u32, job.depth);
+            let mut node = make_node(arcs, bound, s as u32, job.depth);
             node.t0 = job.a.t;
             node.t1 = job.b.t;
             self.max_depth = self.max_depth.max(job.depth);
@@ -714,11 +836,42 @@ fn placeholder() -> BiarcNode {
     }
 }
 
-/// Node data from a fit whose curve piece is within `eps` (>= `fit.eps`) of its arcs as
-/// revolved: disk around the chord midpoint and the chord-distance bound. The disk contains
-/// each arc, hence by convexity its chord.
-fn make_node(fit: &FittedBiarc, eps: f64, spiral: u32, depth: u32) -> BiarcNode {
-    let [a0, a1] = fit.arcs;
+/// The chord node's two segments `a -> m -> b` and its bound, for a curve piece within
+/// `deviation` of the segment `ab` ([`PieceCurve::hull_deviation`]). `m` is the chord's
+/// midpoint. When the chord is too short for a midpoint distinct from its ends (a piece that
+/// returns to its start: a fin, a micro-spiral), `m` moves off `a` by `step`, the larger of
+/// the deviation and a rounding-sized length, and the bound grows to `step + |b - a|`: every
+/// curve point is within `deviation + |b - a|` of `a`, a point of the segments, and every
+/// point of the segments is within `step + |b - a|` of `a` or `b`, curve points.
+fn chord_arcs(a: Point2<f64>, b: Point2<f64>, deviation: f64) -> ([Arc; 2], f64) {
+    let mid = nalgebra::center(&a, &b);
+    let (m, bound) = if mid != a && mid != b {
+        (mid, deviation)
+    } else {
+        let step = deviation.max(ulp_slack(a.coords.amax().max(1.0)));
+        (a + Vector2::new(0.0, step), step + (b - a).norm())
+    };
+    ([segment(a, m), segment(m, b)], bound)
+}
+
+/// The segment from `a` to `b` (distinct points) as an [`Arc`] of zero curvature.
+fn segment(a: Point2<f64>, b: Point2<f64>) -> Arc {
+    let length = (b - a).norm();
+    Arc {
+        start: a,
+        end: b,
+        start_tangent: (b - a) / length,
+        curvature: 0.0,
+        sweep: 0.0,
+        length,
+    }
+}
+
+/// Node data for arcs whose curve piece is within `eps` of them as revolved: disk around the
+/// chord midpoint and the chord-distance bound. The disk contains each arc, hence by
+/// convexity its chord.
+fn make_node(arcs: [Arc; 2], eps: f64, spiral: u32, depth: u32) -> BiarcNode {
+    let [a0, a1] = arcs;
     let (a, b) = (a0.start, a1.end);
     let m = nalgebra::center(&a, &b);
     let radius = max_distance(&a0, m).max(max_distance(&a1, m)) + eps;
@@ -727,7 +880,7 @@ fn make_node(fit: &FittedBiarc, eps: f64, spiral: u32, depth: u32) -> BiarcNode 
     let j = a0.end;
     let chord_distance = a0.sagitta().max(a1.sagitta()) + segment_distance(j, a, b) + eps;
     let mut n = placeholder();
-    n.arcs = fit.arcs;
+    n.arcs = arcs;
     n.eps = eps;
     n.disk = Disk { center: m, radius };
     n.chord_distance = chord_distance;

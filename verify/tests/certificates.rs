@@ -343,6 +343,88 @@ fn repeated_end_control_point_profile() {
     }
 }
 
+/// Profiles on which rounding hides the spiral property (found by `proptest_stationary`,
+/// frozen in `regressions/near-stationary/`: near-stationary points, knots on stationary
+/// points, fins that round into micro-spirals, a line perturbed by 3.6e-11) build with
+/// control-polygon spirals, and a sphere placed at gaps 1e-2 and 1e-4 above, below and beside
+/// each such spiral passes the oracle's checks; so does the pose at which a witness was once
+/// 1.3e-11 off the perturbed line (against a tree eps of 5.5e-12).
+#[test]
+fn near_stationary_profiles() {
+    use revdist::biarc::{BiarcTree, SpiralBound};
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions/near-stationary");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 8, "{} profiles in {dir:?}", files.len());
+    let sphere = model("sphere").unwrap(); // radius 0.75, centre (0, 0, 0.75) in its frame
+    let mut checked_spirals = 0;
+    for path in &files {
+        let a = revdist::profile_file::load_path(path).unwrap();
+        for eps in [1e-3, 1e-5] {
+            let tree = BiarcTree::build(&a, eps).unwrap_or_else(|e| panic!("{path:?}: {e}"));
+            let aims: Vec<_> = tree
+                .spirals()
+                .iter()
+                .filter(|s| s.bound() == SpiralBound::ControlPolygon)
+                .take(2)
+                .map(|s| {
+                    let (p, q) = tree.node(s.root).chord();
+                    nalgebra::center(&p, &q)
+                })
+                .collect();
+            for aim in aims {
+                checked_spirals += 1;
+                let (rho, z) = (aim.x, aim.y);
+                for gap in [1e-2, 1e-4] {
+                    let poses = [
+                        translation(rho, 0.0, z + gap),
+                        translation(rho, 0.0, z - gap - 1.5),
+                        translation(rho + gap + 0.75, 0.0, z - 0.75),
+                        translation(rho - gap - 0.75, 0.0, z - 0.75),
+                    ];
+                    for (side, pose) in poses.iter().enumerate() {
+                        checked(
+                            &a,
+                            &sphere,
+                            pose,
+                            eps,
+                            &QueryOptions::default(),
+                            &format!("{path:?} eps {eps} aim {aim:?} gap {gap} side {side}"),
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        checked_spirals >= files.len(),
+        "{checked_spirals} spirals aimed at"
+    );
+    let perturbed = revdist::profile_file::load_path(&dir.join("perturbed-line.toml")).unwrap();
+    let pose = verify::queries::PoseSpec {
+        translation: [0.8329134106710407, 1.7396780584121636, -0.7616803075236778],
+        rotation: [
+            0.2358550308816224,
+            0.07178127343805382,
+            -0.530607166160348,
+            0.8109721871992438,
+        ],
+    }
+    .isometry();
+    checked(
+        &perturbed,
+        &model("pawn").unwrap(),
+        &pose,
+        1e-3,
+        &QueryOptions::default(),
+        "perturbed line against the pawn",
+    );
+}
+
 /// A random profile whose curve runs down a line and back up it (speed exactly zero inside a
 /// piece; drawn by the proptest generator, which failed CI because it did not build) builds,
 /// and queries against a sphere under the fin's tip, beside it and far from it pass the
