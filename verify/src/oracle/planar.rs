@@ -10,8 +10,10 @@
 //!   is within `2 sag` of the best one are candidates (the true closest point is within `sag`
 //!   of a segment, whose distance is then at most `dist(q, curve) + sag <= best + 2 sag`);
 //!   on each, the parameter is refined by safeguarded Newton on `(C(t) - q) . C'(t) = 0`
-//!   over the segment and its two neighbours, also trying the bracket ends. The answer is an
-//!   actual curve point, so its distance is `>=` the true distance up to round-off.
+//!   over the segment and its two neighbours, also trying the bracket ends, and by a
+//!   derivative-free golden-section search over the segment's own range (Newton stalls where
+//!   the speed goes to zero; see [`golden_on_piece`]); the nearer point wins. The answer is
+//!   an actual curve point, so its distance is `>=` the true distance up to round-off.
 //! - [`PlanarIndex::inside_poly`]: crossing parity of a ray towards `+rho` against the
 //!   polygon closed by the axis segment (open chains) or by itself (loops). The axis segment
 //!   lies at `rho = 0 <= q.rho` and never crosses the ray, so it needs no edge of its own.
@@ -311,7 +313,16 @@ impl PlanarIndex {
         };
         let (_, frac) = seg_distance_sq(q, a.p, b.p);
         let t0 = a.t + frac * (b.t - a.t);
-        let (t, p) = minimise_on_piece(&self.geom, k, q, lo, hi, t0);
+        let (mut t, mut p) = minimise_on_piece(&self.geom, k, q, lo, hi, t0);
+        // Newton needs `h' = |C'|^2 + (C - q) . C''` well away from zero, which fails where
+        // the speed goes to zero (a stationary point, often on a knot): there `h'` can vanish
+        // or turn negative far from the minimum and the iteration stalls (regression f11 of
+        // `verify/regressions/near-stationary/zero-speed-knot.toml`). The derivative-free search over the
+        // segment's own parameter range does not use `C'` at all; keep the nearer point.
+        let (tg, pg) = golden_on_piece(&self.geom, k, q, a.t, b.t);
+        if dist(pg, q) < dist(p, q) {
+            (t, p) = (tg, pg);
+        }
         let pc = &self.geom.pieces[k];
         let j = pc.jet(t);
         CurvePoint {
@@ -441,6 +452,76 @@ pub fn minimise_on_piece(
     best
 }
 
+/// Golden-section search for the minimum of `|C(t) - q|` over `[ta, tb]` on piece `k`,
+/// using curve points only (no derivatives, so a zero speed does not disturb it); the
+/// iterates never leave `[ta, tb]`. Returns the best realised parameter and point seen,
+/// the two ends included.
+///
+/// [`PlanarIndex::refine_segment`] calls it on one polyline segment's parameter range. That
+/// range lies inside one knot span (every knot is a polyline vertex), and the closest curve
+/// point lies in the range of some candidate segment (see the module documentation), so a
+/// search confined to each candidate's own range loses nothing. The search finds the
+/// minimum whenever `|C(t) - q|` is unimodal on the range, e.g. on a straight run however its
+/// speed varies (`verify/regressions/near-stationary/zero-speed-knot.toml`: speed going to zero
+/// at a knot); otherwise it still returns an actual curve point, a local minimum or an end,
+/// i.e. an upper bound like every answer of [`PlanarIndex::closest`], and the caller keeps
+/// the Newton answer when that is nearer.
+///
+/// It stops when the bracket is within [`GOLDEN_TOL_ULPS`] ulps of `t` (or after
+/// [`GOLDEN_MAX_ITER`] steps): near the minimum `|C(t) - q|` changes by a second-order
+/// amount only, so the realised distance is then exact to round-off even where the
+/// comparisons can no longer order the iterates.
+pub fn golden_on_piece(geom: &ProfileGeom, k: usize, q: P2, ta: f64, tb: f64) -> (f64, P2) {
+    let pc = &geom.pieces[k];
+    let g = |t: f64| {
+        let p = pc.point(t);
+        (dist(p, q), p)
+    };
+    let (ga, pa) = g(ta);
+    let (gb, pb) = g(tb);
+    let mut best = if ga <= gb { (ga, ta, pa) } else { (gb, tb, pb) };
+    if tb <= ta {
+        return (best.1, best.2);
+    }
+    // 1 / phi: the interior points split the bracket in the golden ratio, so one of them is
+    // reused at every step.
+    const INV_PHI: f64 = 0.618_033_988_749_894_9;
+    let (mut a, mut b) = (ta, tb);
+    let mut x1 = b - INV_PHI * (b - a);
+    let mut x2 = a + INV_PHI * (b - a);
+    let (mut g1, mut p1) = g(x1);
+    let (mut g2, mut p2) = g(x2);
+    for _ in 0..GOLDEN_MAX_ITER {
+        for (gx, x, px) in [(g1, x1, p1), (g2, x2, p2)] {
+            if gx < best.0 {
+                best = (gx, x, px);
+            }
+        }
+        if b - a <= GOLDEN_TOL_ULPS * f64::EPSILON * (a.abs().max(b.abs()) + (tb - ta)) {
+            break;
+        }
+        if g1 <= g2 {
+            // The minimum is in [a, x2].
+            (b, x2, g2, p2) = (x2, x1, g1, p1);
+            x1 = b - INV_PHI * (b - a);
+            (g1, p1) = g(x1);
+        } else {
+            (a, x1, g1, p1) = (x1, x2, g2, p2);
+            x2 = a + INV_PHI * (b - a);
+            (g2, p2) = g(x2);
+        }
+    }
+    (best.1, best.2)
+}
+
+/// Stopping width of [`golden_on_piece`], in ulps of the parameter (plus the range): a few
+/// ulps, where the search cannot order its points any more.
+pub const GOLDEN_TOL_ULPS: f64 = 4.0;
+/// Step cap of [`golden_on_piece`], a guard only: each step shrinks the bracket by 0.618 and
+/// the stopping width is at least [`GOLDEN_TOL_ULPS`] ulps of the range, which about 73 steps
+/// reach; the cap ends the loop should a non-finite value keep the test from holding.
+pub const GOLDEN_MAX_ITER: usize = 100;
+
 #[cfg(test)]
 mod tests {
     use super::super::profile_eval::{PieceEval, ProfileGeom};
@@ -504,6 +585,37 @@ mod tests {
         assert!(hit.dist < 1e-12, "tip {:e} from the curve", hit.dist);
         let beyond = idx.closest([tip[0] - 1e-6, c[1]]);
         assert!((beyond.dist - 1e-6).abs() < 1e-12, "{:e}", beyond.dist);
+    }
+
+    /// Case f11 of the stationary-point property test (`verify/regressions/near-stationary/zero-speed-knot.toml`): piece 2 is a cubic
+    /// B-spline whose speed vanishes at its knot 0.99834504835 (a stationary point on a knot)
+    /// and slows down towards it over the span before. `q` is that piece's point at
+    /// t = 0.8914, so its distance to the curve is zero up to the round-off of one curve
+    /// evaluation (a few ulps of coordinates of size ~1, i.e. ~1e-16). The tolerance is
+    /// [`SLACK_REL`](crate::oracle::checks::SLACK_REL) = 1e-12 times `1 + |q|`, the round-off
+    /// slack the checks grant witness points: four orders above that round-off and nine
+    /// below the wrong answer the Newton iteration on `(C - q) . C'` gave (6.45e-3 at
+    /// t = 0.93584, where `h'` nearly vanishes as the curve decelerates).
+    #[test]
+    fn closest_next_to_zero_speed_knot_is_on_the_curve() {
+        let profile = revdist::profile_file::from_toml_str(include_str!(
+            "../../regressions/near-stationary/zero-speed-knot.toml"
+        ))
+        .expect("the f11 profile builds");
+        let idx = crate::oracle::index(&profile);
+        let q = [1.1755570567281444, 0.11530362878890313];
+        let on_curve = idx.geom.point(2, 0.8914);
+        assert!(dist(on_curve, q) < 1e-15, "q is piece 2 at t = 0.8914");
+        let hit = idx.closest(q);
+        let tol = crate::oracle::checks::SLACK_REL * (1.0 + norm(q));
+        assert!(
+            hit.dist < tol,
+            "closest: dist {:e} (piece {}, t {}, p {:?}) above {tol:e}",
+            hit.dist,
+            hit.piece,
+            hit.t,
+            hit.p
+        );
     }
 
     #[test]
