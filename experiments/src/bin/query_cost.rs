@@ -4,8 +4,10 @@
 //! and in exact leaf solves (the rest is node bounds, the queue and solid semantics).
 //!
 //! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]
-//! [--repeat K] [--closed-form on|off]` (`off`: balls and solid tori go through the traversal
-//! too).
+//! [--repeat K] [--closed-form on|off] [--cold]` (`off`: balls and solid tori go through the
+//! traversal too; `--cold`: before each timed query, write a buffer of [`EVICT_BYTES`] so that
+//! the trees come from memory, as when queries alternate with other work, e.g. `fcl_bench`'s
+//! FCL queries).
 
 use experiments::poses::{log_uniform, pose_at_gap};
 use experiments::SplitMix;
@@ -14,6 +16,17 @@ use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use std::sync::Arc;
 use std::time::Instant;
+
+/// Bytes written between queries under `--cold`: above this machine's last-level cache.
+const EVICT_BYTES: usize = 64 << 20;
+
+/// Writes and reads `buf` once (one store per cache line), evicting the caches.
+fn evict(buf: &mut [u8]) {
+    for i in (0..buf.len()).step_by(64) {
+        buf[i] = buf[i].wrapping_add(1);
+    }
+    std::hint::black_box(&buf);
+}
 
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -48,6 +61,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut tol_mode = "trees".to_string();
     let mut repeat = 1usize;
     let mut closed_form = true;
+    let mut cold = false;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -56,6 +70,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             "--pairs" => pairs = args[i + 1].clone(),
             "--tolerance" => tol_mode = args[i + 1].clone(),
             "--repeat" => repeat = args[i + 1].parse()?,
+            "--cold" => {
+                cold = true;
+                i += 1;
+                continue;
+            }
             "--closed-form" => {
                 closed_form = match args[i + 1].as_str() {
                     "on" => true,
@@ -111,7 +130,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                     std::hint::black_box(distance(&sa, b, &opts));
                 }
             }
+            let mut evict_buf = vec![0u8; if cold { EVICT_BYTES } else { 0 }];
             for b in &placed {
+                if cold {
+                    evict(&mut evict_buf);
+                }
                 let t0 = Instant::now();
                 let d = distance(&sa, b, &opts);
                 times.push(t0.elapsed().as_secs_f64() * 1e6);
