@@ -62,6 +62,18 @@
 //!   ([`leaf::HULL_PRECISION_SHARE`]): the tori's near points on the cup's waist started
 //!   realised pairs far from the minimum (cup-bottle 43 -> 37 us at eps 1e-4).
 //!
+//! **Cold caches.** The times above are warm: the same query loop keeps the trees and the
+//! code in cache. Run after unrelated work, a query also fetches both from memory:
+//! `query_cost --cold` (64 MB written before each query) gives medians of 43-58 us against
+//! 17-33 us warm at eps 1e-4 on the four pairs. Warming only the code (a query on copies of
+//! the two solids first) brings them to 25-45 us: about 12-18 us of a cold query is fetching
+//! its code (some 120 functions, 100-200 KB of machine code; fat LTO with one codegen unit
+//! gave -4% warm and cold within noise) and 8-12 us its trees. Prefetching a popped pair's
+//! children (nodes, hulls, first patch) before their keys made no measurable difference.
+//! FCL's cold/warm ratio is only 1.03-1.25 (its meshes stay out of cache either way), so
+//! `fcl_bench` reports both: its headline ratio is cold, and the warm ratio is 1.5-2.5x
+//! higher.
+//!
 //! Earlier (before the hull bounds): 3-9 leaf pairs per query went to the exact solve,
 //! 80% of them as "may intersect" only because a straight piece's or a wide arc's solid
 //! torus overlapped the other piece; the node hulls (a biarc's chords grown by their
@@ -90,7 +102,10 @@
 //! exact stage); a regula-falsi crossing scan (the bisection is not where the time goes);
 //! lazy node keys (children queued on their sphere bound, the hull and torus bounds computed
 //! only when a pair reaches the top of the queue: same time, since a query computes only
-//! 10-20 hull keys and nearly all of them are for pairs it expands anyway).
+//! 10-20 hull keys and nearly all of them are for pairs it expands anyway); starting a node
+//! pair's hull iteration from the direction that gave its parent's bound (with one support
+//! step over spirals this pins every upper pair to the root's direction: pawn-pawn node
+//! pairs 18 -> 25; inside spirals only: same counters, same time).
 //!
 //! # Layout
 //!
