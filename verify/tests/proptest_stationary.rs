@@ -17,8 +17,9 @@
 //! solid may be the posed one), and eps is 1e-3, 1e-4 or 1e-5. Building must succeed and the
 //! independent oracle must find no violation (the query is checked as
 //! `verify::queries::single` does; a witness the oracle puts off its surface is measured again
-//! by a derivative-free search, since the oracle's Newton step on `(C - q) . C'` can stop at a
-//! point of zero speed).
+//! by a derivative-free search: the oracle's Newton step on `(C - q) . C'` used to stop next
+//! to points of zero speed, and its closest point now has a derivative-free pass of its own,
+//! so this second opinion should never be needed).
 //!
 //! It was `#[ignore]`d while about 11% of its draws did not build (near-stationary points whose
 //! speed is above the exact-stop threshold, knots on stationary points after rounding, fins
