@@ -20,9 +20,13 @@
 //! in an order that rotates from pose to pose, so drift and cache warm-up spread evenly. Each
 //! method's query is timed twice on its pose, back to back: the first time comes after the
 //! other methods' queries, so its data and code have left the caches (FCL's meshes take
-//! megabytes; an untimed FCL cross-check follows every revdist query): the *cold* time, the
+//! megabytes; the cross-check's reference answers are computed in a pass of their own, so
+//! that no untimed query warms a timed one): the *cold* time, the
 //! headline, as when an application alternates between many pairs. The second time is the
-//! *warm* time of the same query with its trees and code cached, as in a loop over one pair.
+//! *warm* time of the same query with its trees and code cached. After the interleaved pass,
+//! revdist and FCL OBBRSS (each layout) also run *blocked*: each alone over all poses in a
+//! row, the usual benchmark loop over one pair (its code and, for revdist's small trees, its
+//! data stay cached from pose to pose).
 //!
 //! Usage: `fcl_bench [--poses N] [--poses-1e-5 N] [--eps E]... [--pairs a-b,...] [--full]
 //! [--out DIR]`. Writes `DIR/fcl_bench.csv` and `DIR/fcl_bench.md` (default `figures`).
@@ -152,6 +156,9 @@ struct Row {
     /// tolerance, and FCL OBBRSS per layout.
     rev_trees_warm: f64,
     fcl_obbrss_warm: Vec<f64>,
+    /// Blocked medians (each method alone over all poses in a row).
+    rev_trees_blocked: f64,
+    fcl_obbrss_blocked: Vec<f64>,
     best_obbrss: usize,
     best_rss: usize,
     tris: Vec<usize>,
@@ -303,9 +310,23 @@ fn bench_row(
         ..QueryOptions::default()
     };
     let n_methods = 2 + 2 * layouts.len();
+    let id = Isometry3::identity();
+    // The cross-check's reference answers first, in a pass of their own: an untimed FCL
+    // query between the timed ones would warm the caches for the FCL method after it.
+    let reference: Vec<f64> = {
+        let (la, lb) = &layouts[0];
+        let lb = lb.as_ref().unwrap_or(la);
+        poses
+            .iter()
+            .map(|pose| {
+                la.obbrss
+                    .distance(&lb.obbrss, &id, pose)
+                    .map(|f| f.distance)
+            })
+            .collect::<Result<_, _>>()?
+    };
     let mut times = vec![Vec::with_capacity(poses.len()); n_methods];
     let mut warm_times = vec![Vec::with_capacity(poses.len()); n_methods];
-    let id = Isometry3::identity();
     for (i, pose) in poses.iter().enumerate() {
         let b = sb.with_pose(*pose);
         for k in 0..n_methods {
@@ -323,10 +344,7 @@ fn bench_row(
                         row.max_width = row.max_width.max(d.upper - d.lower);
                     }
                     // Cross-check against the balanced OBBRSS answer (computed untimed).
-                    let (la, lb) = &layouts[0];
-                    let lb = lb.as_ref().unwrap_or(la);
-                    let f = la.obbrss.distance(&lb.obbrss, &id, pose)?;
-                    if !agrees_with_fcl(&d, f.distance, row.h_sum[0], pose, size) {
+                    if !agrees_with_fcl(&d, reference[i], row.h_sum[0], pose, size) {
                         row.violations += 1;
                     }
                 }
@@ -358,6 +376,25 @@ fn bench_row(
         row.fcl_obbrss_warm.push(median(&warm_times[2 + 2 * l]));
     }
     row.rev_trees_warm = median(&warm_times[0]);
+    // Blocked: each method alone over all poses (answers were cross-checked above).
+    let mut blocked = Vec::with_capacity(poses.len());
+    for pose in poses {
+        let b = sb.with_pose(*pose);
+        let t = Instant::now();
+        std::hint::black_box(distance(&sa, &b, &trees));
+        blocked.push(us(t.elapsed()));
+    }
+    row.rev_trees_blocked = median(&blocked);
+    for (la, lb) in &layouts {
+        let lb = lb.as_ref().unwrap_or(la);
+        blocked.clear();
+        for pose in poses {
+            let t = Instant::now();
+            std::hint::black_box(la.obbrss.distance(&lb.obbrss, &id, pose)?);
+            blocked.push(us(t.elapsed()));
+        }
+        row.fcl_obbrss_blocked.push(median(&blocked));
+    }
     let best = |f: &dyn Fn(&(f64, f64)) -> f64| {
         (0..row.fcl.len())
             .min_by(|&x, &y| f(&row.fcl[x]).total_cmp(&f(&row.fcl[y])))
@@ -376,7 +413,8 @@ fn csv(rows: &[Row]) -> String {
          tris_balanced,tris_capped,h_sum_balanced,h_sum_capped,rev_max_width,\
          rev_build_ms,mesh_ms_balanced,obbrss_build_ms_balanced,rss_build_ms_balanced,mesh_ms_capped,obbrss_build_ms_capped,rss_build_ms_capped,\
          rev_query_tree_bytes,rev_biarc_tree_bytes,obbrss_bytes_balanced,rss_bytes_balanced,obbrss_bytes_capped,rss_bytes_capped,violations,\
-         rev_trees_warm_median_us,fcl_obbrss_balanced_warm_us,fcl_obbrss_capped_warm_us,ratio_obbrss_over_rev_warm\n",
+         rev_trees_warm_median_us,fcl_obbrss_balanced_warm_us,fcl_obbrss_capped_warm_us,ratio_obbrss_over_rev_warm,\
+         rev_trees_blocked_median_us,fcl_obbrss_balanced_blocked_us,fcl_obbrss_capped_blocked_us,ratio_obbrss_over_rev_blocked\n",
     );
     for r in rows {
         let (bo, br) = (r.fcl[r.best_obbrss].0, r.fcl[r.best_rss].1);
@@ -423,11 +461,15 @@ fn csv(rows: &[Row]) -> String {
         s.pop();
         let _ = writeln!(
             s,
-            ",{:.2},{:.2},{:.2},{:.3}",
+            ",{:.2},{:.2},{:.2},{:.3},{:.2},{:.2},{:.2},{:.3}",
             r.rev_trees_warm,
             r.fcl_obbrss_warm[0],
             r.fcl_obbrss_warm[1],
-            r.fcl_obbrss_warm[r.best_obbrss] / r.rev_trees_warm
+            r.fcl_obbrss_warm[r.best_obbrss] / r.rev_trees_warm,
+            r.rev_trees_blocked,
+            r.fcl_obbrss_blocked[0],
+            r.fcl_obbrss_blocked[1],
+            r.fcl_obbrss_blocked[r.best_obbrss] / r.rev_trees_blocked
         );
     }
     s
@@ -483,7 +525,8 @@ fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
          of the OBBRSS column). Violations: cases where revdist's interval misses FCL's \
          `d ± (h_a + h_b)`. All times are *cold*: each query runs after the other methods' \
          queries (FCL's meshes take megabytes), so its trees and code come from memory. The \
-         *warm* table repeats each query at once on the same pose (trees and code cached).\n\n",
+         second table runs each method *blocked* (alone over all poses in a row, the usual \
+         benchmark loop) and *warm* (each query repeated at once on the same pose).\n\n",
     );
     s.push_str("| pair | eps | triangles A+B | revdist median / p90 us | revdist tol 0, traversal, median us | FCL OBBRSS median us | FCL RSS median us | ratio OBBRSS / revdist | build revdist / mesh+OBBRSS ms | memory revdist / OBBRSS / RSS | max width / h_a+h_b | violations |\n");
     s.push_str(
@@ -515,20 +558,22 @@ fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
             r.violations
         );
     }
-    s.push_str("\nWarm (each query repeated at once on the same pose; medians, us):\n\n| pair | eps | revdist | FCL OBBRSS | ratio OBBRSS / revdist | cold / warm revdist | cold / warm FCL |\n| --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
+    s.push_str("\nBlocked (each method alone over all poses in a row) and warm (each query repeated at once on the same pose); FCL OBBRSS in the layout of the first table; medians, us:\n\n| pair | eps | revdist blocked | FCL blocked | ratio blocked | revdist warm | FCL warm | ratio warm | cold / blocked revdist | cold / blocked FCL |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for r in rows {
         let o = r.best_obbrss;
         let _ = writeln!(
             s,
-            "| {} | {:.0e} | {:.1} | {:.1} ({}) | {:.2} | {:.2} | {:.2} |",
+            "| {} | {:.0e} | {:.1} | {:.1} | {:.2} | {:.1} | {:.1} | {:.2} | {:.2} | {:.2} |",
             r.pair,
             r.eps,
+            r.rev_trees_blocked,
+            r.fcl_obbrss_blocked[o],
+            r.fcl_obbrss_blocked[o] / r.rev_trees_blocked,
             r.rev_trees_warm,
             r.fcl_obbrss_warm[o],
-            LAYOUT_NAMES[o],
             r.fcl_obbrss_warm[o] / r.rev_trees_warm,
-            r.rev_trees.0 / r.rev_trees_warm,
-            r.fcl[o].0 / r.fcl_obbrss_warm[o]
+            r.rev_trees.0 / r.rev_trees_blocked,
+            r.fcl[o].0 / r.fcl_obbrss_blocked[o]
         );
     }
     s.push_str("\nAll layouts (FCL medians, us; triangles):\n\n| pair | eps | balanced OBBRSS / RSS | tris | capped OBBRSS / RSS | tris |\n| --- | --- | ---: | ---: | ---: | ---: |\n");
