@@ -579,12 +579,13 @@ impl BiarcTree {
     /// biarc fits, a zero tangent, or the bound stalls: rounding made a piece that is not a
     /// short spiral), with chords and the control-polygon bound.
     fn build_spiral(&mut self, s: usize) -> Result<(), TreeError> {
-        let root = self.nodes.len();
+        let (root, max_depth) = (self.nodes.len(), self.max_depth);
         if self.spirals[s].bound == SpiralBound::Bilens {
             if self.grow_spiral(s, SpiralBound::Bilens).is_ok() {
                 return Ok(());
             }
             self.nodes.truncate(root);
+            self.max_depth = max_depth;
             self.spirals[s].bound = SpiralBound::ControlPolygon;
         }
         self.grow_spiral(s, SpiralBound::ControlPolygon)
