@@ -122,6 +122,17 @@ pub struct PoseSpec {
 }
 
 impl PoseSpec {
+    /// The pose of an isometry (translation, and its unit quaternion as `[w, x, y, z]`);
+    /// [`PoseSpec::isometry`] gives it back.
+    pub fn from_isometry(iso: &Isometry3<f64>) -> PoseSpec {
+        let t = iso.translation.vector;
+        let q = iso.rotation;
+        PoseSpec {
+            translation: [t.x, t.y, t.z],
+            rotation: [q.w, q.i, q.j, q.k],
+        }
+    }
+
     /// The isometry exactly as `revdist distance` builds it from JSON.
     pub fn isometry(&self) -> Isometry3<f64> {
         let r = self.rotation;

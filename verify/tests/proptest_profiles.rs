@@ -4,7 +4,7 @@
 //! in 1e-3..1e-6, the query's answer passes every check of the independent oracle.
 //! Run in release mode: `cargo test --release -p verify --test proptest_profiles`.
 
-use nalgebra::{Quaternion, Translation3, UnitQuaternion};
+use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
 use proptest::prelude::*;
 use verify::queries::{single, PoseSpec};
 use verify::random_profiles::{random_profile, SplitMix64};
@@ -33,10 +33,7 @@ proptest! {
         let t = Translation3::new(dir[0] / n * reach, dir[1] / n * reach, dir[2] / n * reach);
         let q = Quaternion::new(rot[0], rot[1], rot[2], rot[3]);
         let r = if q.norm() > 1e-3 { UnitQuaternion::from_quaternion(q) } else { UnitQuaternion::identity() };
-        let pose = PoseSpec {
-            translation: [t.x, t.y, t.z],
-            rotation: [r.w, r.i, r.j, r.k],
-        };
+        let pose = PoseSpec::from_isometry(&Isometry3::from_parts(t, r));
         let (d, _, v, _, _) = single(&a, &b, &pose, eps, None, false).expect("every valid profile builds");
         prop_assert!(
             v.is_empty(),

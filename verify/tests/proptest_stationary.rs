@@ -15,11 +15,8 @@
 //! the axis (open profile). A built-in model (sphere, capsule, pawn) is posed so that a convex
 //! cap of it faces the stationary point at a gap of 1e-4..1e-1 with random rotations (either
 //! solid may be the posed one), and eps is 1e-3, 1e-4 or 1e-5. Building must succeed and the
-//! independent oracle must find no violation (the query is checked as
-//! `verify::queries::single` does; a witness the oracle puts off its surface is measured again
-//! by a derivative-free search: the oracle's Newton step on `(C - q) . C'` used to stop next
-//! to points of zero speed, and its closest point now has a derivative-free pass of its own,
-//! so this second opinion should never be needed).
+//! independent oracle must find no violation (`verify::queries::single`; the oracle's closest
+//! point on a curve has a derivative-free pass, so points of zero speed do not stall it).
 //!
 //! It was `#[ignore]`d while about 11% of its draws did not build (near-stationary points whose
 //! speed is above the exact-stop threshold, knots on stationary points after rounding, fins
@@ -39,15 +36,8 @@ use nalgebra::{Isometry3, Point2, Translation3, Unit, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::Profile;
-use revdist::query::{distance, Distance, QueryOptions};
-use revdist::solid::Solid;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
-use std::sync::Arc;
-use verify::oracle::{
-    self, check, refine_hint, surface_distance, Check, CheckInput, OracleOptions,
-};
-use verify::oracle::{OracleResult, Violation};
-use verify::queries::PoseSpec;
+use verify::queries::{single, PoseSpec};
 use verify::random_profiles::{to_toml, SplitMix64};
 
 type P2 = [f64; 2];
@@ -370,6 +360,20 @@ fn argmin(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
     }
     let h = (hi - lo) / N as f64;
     golden(&f, (best - h).max(lo), (best + h).min(hi))
+}
+
+/// Golden-section minimum of a unimodal `f` on [a, b].
+fn golden(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..100 {
+        let (c, e) = (b - g * (b - a), a + g * (b - a));
+        if f(c) < f(e) {
+            b = e;
+        } else {
+            a = c;
+        }
+    }
+    0.5 * (a + b)
 }
 
 /// Rotation of the local frame: a quarter turn (exact) or any angle.
@@ -788,124 +792,6 @@ fn place(
     Isometry3::from_parts(Translation3::from(t), r)
 }
 
-fn pose_spec(iso: &Isometry3<f64>) -> PoseSpec {
-    let t = iso.translation.vector;
-    let q = iso.rotation;
-    PoseSpec {
-        translation: [t.x, t.y, t.z],
-        rotation: [q.w, q.i, q.j, q.k],
-    }
-}
-
-/// `verify::queries::single(a, b, pose, eps, None, false)`, with the witness violations
-/// checked again by a search without derivatives (see below); also returns the dismissed
-/// ones.
-fn checked_query(
-    a: &Profile,
-    b: &Profile,
-    pose: &PoseSpec,
-    eps: f64,
-) -> Result<(Distance, OracleResult, Vec<Violation>, Vec<String>), String> {
-    let iso = pose.isometry();
-    let t0 = std::time::Instant::now();
-    let sa = Solid::from_profile(Arc::new(a.clone()), eps).map_err(|e| e.to_string())?;
-    let sb = Solid::from_profile(Arc::new(b.clone()), eps)
-        .map_err(|e| e.to_string())?
-        .with_pose(iso);
-    let t1 = std::time::Instant::now();
-    let qopts = QueryOptions::default();
-    let d = distance(&sa, &sb, &qopts);
-    let t2 = std::time::Instant::now();
-    if std::env::var_os("STATIONARY_VERBOSE").is_some() {
-        eprintln!("  build {:.2?} query {:.2?}", t1 - t0, t2 - t1);
-    }
-    let (ia, ib) = (oracle::index(a), oracle::index(b));
-    let mut o = surface_distance(&ia, &ib, &iso, &OracleOptions::full());
-    let (h, pa, pb) = refine_hint(&ia, &ib, &iso, &d.point_a, &d.point_b);
-    if h < o.upper {
-        o.upper = h;
-        o.point_a = pa;
-        o.point_b = pb;
-        o.lower = o.lower.min(h);
-    }
-    let input = CheckInput {
-        d: &d,
-        pose_a: &Isometry3::identity(),
-        pose_b: &iso,
-        eps_a: sa.tree.eps,
-        eps_b: sb.tree.eps,
-        tolerance: qopts
-            .tolerance
-            .width(sa.tree.target_eps, sb.tree.target_eps),
-        oracle: &o,
-        a: &ia,
-        b: &ib,
-    };
-    let mut v = check(&input);
-    // The oracle's closest point on a curve is found by Newton on (C - q) . C', which also
-    // vanishes where the speed C' does: next to a stationary point it can return the
-    // stationary point and report a witness farther from its surface than it is. A witness
-    // violation stands only if a search without derivatives confirms it.
-    let slack = input.slack();
-    let mut dismissed = Vec::new();
-    v.retain(|x| {
-        if x.check != Check::Witness {
-            return true;
-        }
-        let (profile, p, e) = if x.detail.starts_with("point_a") {
-            (a, d.point_a, sa.tree.eps)
-        } else {
-            (b, iso.inverse() * d.point_b, sb.tree.eps)
-        };
-        let g = curve_distance(profile, [p.x.hypot(p.y), p.z]);
-        let keep = g > e + slack;
-        if !keep {
-            dismissed.push(format!("{} (gap by direct search {g:e})", x.detail));
-        }
-        keep
-    });
-    Ok((d, o, v, dismissed))
-}
-
-/// Distance from `q` (rho, z) to the profile's curve: a scan of 256 points per knot span
-/// and a golden-section search around every local minimum of the distance (smooth in the
-/// parameter, stationary points of the curve included).
-fn curve_distance(profile: &Profile, q: P2) -> f64 {
-    const M: usize = 256;
-    let mut best = f64::INFINITY;
-    for c in profile.pieces() {
-        let f = |t: f64| {
-            let p = c.eval(t);
-            (p.x - q[0]).hypot(p.y - q[1])
-        };
-        for (a, b) in c.distinct_spans() {
-            let t = |i: usize| a + (b - a) * i as f64 / M as f64;
-            let vals: Vec<f64> = (0..=M).map(|i| f(t(i))).collect();
-            for i in 0..=M {
-                best = best.min(vals[i]);
-                if i > 0 && i < M && vals[i] <= vals[i - 1] && vals[i] <= vals[i + 1] {
-                    best = best.min(f(golden(&f, t(i - 1), t(i + 1))));
-                }
-            }
-        }
-    }
-    best
-}
-
-/// Golden-section minimum of a unimodal `f` on [a, b].
-fn golden(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (c, e) = (b - g * (b - a), a + g * (b - a));
-        if f(c) < f(e) {
-            b = e;
-        } else {
-            a = c;
-        }
-    }
-    0.5 * (a + b)
-}
-
 /// One case: draw, pose, query, check. `Err` carries the report of a failure.
 fn run_case(seed: u64, kind: usize, eps: f64) -> Result<(), String> {
     let mut rng = SplitMix64(seed);
@@ -921,9 +807,13 @@ fn run_case(seed: u64, kind: usize, eps: f64) -> Result<(), String> {
     let iso = place(&mut rng, cap, x, n, gap);
     let swapped = rng.chance(0.5);
     let (a, b, pose) = if swapped {
-        (&model, &drawn.profile, pose_spec(&iso.inverse()))
+        (
+            &model,
+            &drawn.profile,
+            PoseSpec::from_isometry(&iso.inverse()),
+        )
     } else {
-        (&drawn.profile, &model, pose_spec(&iso))
+        (&drawn.profile, &model, PoseSpec::from_isometry(&iso))
     };
     let report = |what: String| {
         format!(
@@ -940,29 +830,14 @@ fn run_case(seed: u64, kind: usize, eps: f64) -> Result<(), String> {
             to_toml(&drawn.profile)
         )
     };
-    let t0 = std::time::Instant::now();
-    let (d, o, v, dismissed) =
-        checked_query(a, b, &pose, eps).map_err(|e| report(format!("build failed: {e}")))?;
+    let (d, o, v, tq, to) =
+        single(a, b, &pose, eps, None, false).map_err(|e| report(format!("build failed: {e}")))?;
     if std::env::var_os("STATIONARY_VERBOSE").is_some() {
         eprintln!(
             "seed {seed} {} | {} gap {gap:.1e} eps {eps:e} | value {:.6e} oracle [{:.6e}, {:.6e}] \
-             overlap {} | {:.2?}{}",
-            drawn.desc,
-            cap.name,
-            d.value,
-            o.lower,
-            o.upper,
-            d.overlap,
-            t0.elapsed(),
-            if dismissed.is_empty() {
-                String::new()
-            } else {
-                format!(" | oracle false positive: {}", dismissed.join("; "))
-            }
+             overlap {} | query {tq:.2?} oracle {to:.2?}",
+            drawn.desc, cap.name, d.value, o.lower, o.upper, d.overlap,
         );
-        if !dismissed.is_empty() {
-            eprintln!("{}", report("dismissed oracle witness violations".into()));
-        }
     }
     if v.is_empty() {
         Ok(())

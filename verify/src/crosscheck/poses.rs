@@ -5,7 +5,7 @@
 use super::shapes::Prepared;
 use crate::queries::PoseSpec;
 use crate::random_profiles::SplitMix64;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 use revdist::query::{distance, QueryOptions};
 
 /// Gap range (length units) of separated poses.
@@ -59,11 +59,7 @@ impl PoseKind {
 }
 
 fn spec(t: Vector3<f64>, q: &UnitQuaternion<f64>) -> PoseSpec {
-    let c = q.quaternion().coords; // (x, y, z, w)
-    PoseSpec {
-        translation: [t.x, t.y, t.z],
-        rotation: [c.w, c.x, c.y, c.z],
-    }
+    PoseSpec::from_isometry(&Isometry3::from_parts(t.into(), *q))
 }
 
 /// B's pose with its axis centre at `A's centre + u s`, rotated by `q`.
