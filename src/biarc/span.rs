@@ -113,9 +113,10 @@ impl SpanCurve<'_> {
     /// Where the speed inside the span is within rounding of zero ([`STATIONARY_REL`] of the
     /// hodograph's size: a cusp, a retrace, or a monotone point of zero speed, where a spiral
     /// split lands) the computed direction is noise and may even point backwards. The span is
-    /// then cut there by de Casteljau and the half on that side gives its end limit
-    /// (the limit read off its control polygon, `end_tangent_limit`), rescaled to the span's parameter; the dropped speed is
-    /// returned so that the caller can add the first-order term it ignores to its bounds.
+    /// then cut there by de Casteljau and the half on that side gives its end limit (read off
+    /// its control polygon, `end_tangent_limit`), rescaled to the span's parameter; the
+    /// dropped speed is returned so that the caller can add the first-order term it ignores
+    /// to its bounds.
     pub fn one_sided_derivative(&self, u: f64, leaving: bool) -> (Vector2<f64>, f64) {
         let (_, d) = self.point_and_derivative(u);
         let n = self.homogeneous.len() - 1;

@@ -21,8 +21,11 @@ use crate::poly::bernstein::{odd_roots, Bernstein};
 /// was computed from counts as identically zero (a straight span, an exact circle, an axis-
 /// parallel line). Rounding of the products and differences is ~1e-15 relative for the degrees
 /// here (<= 18); 1e-10 leaves a wide margin while any real curvature signal of a profile is far
-/// larger. A span treated as straight or circular has curvature variation below this relative
-/// level, so the bilens bound can be off by at most that order.
+/// larger. A span treated as straight may still bend at that level, so the tree bounds it by
+/// its control polygon ([`SpanSplits::straight_within_noise`]); one treated as circular (its
+/// `K` dismissed) has curvature variation below this relative level, and its bilens bound can
+/// be off by about that fraction of its size (not certified: see the closing note of the
+/// session that added control-polygon spirals).
 pub const SPLIT_NOISE_REL: f64 = 1e-10;
 
 /// Root positions are isolated to this accuracy in the local parameter `u` (the bilens bound does

@@ -852,20 +852,11 @@ fn chord_arcs(a: Point2<f64>, b: Point2<f64>, deviation: f64) -> ([Arc; 2], f64)
         let step = deviation.max(ulp_slack(a.coords.amax().max(1.0)));
         (a + Vector2::new(0.0, step), step + (b - a).norm())
     };
+    // Distinct end points, each pair: `m` differs from `a` and `b` in both branches.
+    let segment = |p: Point2<f64>, q: Point2<f64>| {
+        Arc::from_point_tangent_point(p, q - p, q).expect("a segment between distinct points")
+    };
     ([segment(a, m), segment(m, b)], bound)
-}
-
-/// The segment from `a` to `b` (distinct points) as an [`Arc`] of zero curvature.
-fn segment(a: Point2<f64>, b: Point2<f64>) -> Arc {
-    let length = (b - a).norm();
-    Arc {
-        start: a,
-        end: b,
-        start_tangent: (b - a) / length,
-        curvature: 0.0,
-        sweep: 0.0,
-        length,
-    }
 }
 
 /// Node data for arcs whose curve piece is within `eps` of them as revolved: disk around the

@@ -326,6 +326,8 @@ fn bench_row(
             .collect::<Result<_, _>>()?
     };
     let mut times = vec![Vec::with_capacity(poses.len()); n_methods];
+    // Every method is repeated at once (warm), also those whose warm time is not reported,
+    // so that each cold query follows the same kind of work whatever method came before.
     let mut warm_times = vec![Vec::with_capacity(poses.len()); n_methods];
     for (i, pose) in poses.iter().enumerate() {
         let b = sb.with_pose(*pose);
@@ -343,7 +345,7 @@ fn bench_row(
                     if m == 0 {
                         row.max_width = row.max_width.max(d.upper - d.lower);
                     }
-                    // Cross-check against the balanced OBBRSS answer (computed untimed).
+                    // Cross-check against the balanced OBBRSS answer (the reference pass).
                     if !agrees_with_fcl(&d, reference[i], row.h_sum[0], pose, size) {
                         row.violations += 1;
                     }

@@ -6,8 +6,8 @@
 //! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]
 //! [--repeat K] [--closed-form on|off] [--cold]` (`off`: balls and solid tori go through the
 //! traversal too; `--cold`: before each timed query, write a buffer of [`EVICT_BYTES`] so that
-//! the trees come from memory, as when queries alternate with other work, e.g. `fcl_bench`'s
-//! FCL queries).
+//! the trees and the code come from memory, as when queries alternate with other work, e.g.
+//! `fcl_bench`'s FCL queries).
 
 use experiments::poses::{log_uniform, pose_at_gap};
 use experiments::SplitMix;
