@@ -51,7 +51,8 @@ pub struct CurvePoint {
     pub p: P2,
     /// Tangent `C'(t)`, zero when unknown.
     pub tangent: P2,
-    /// Whether `t` is at an end of its piece (a joint: the tangent does not give the side).
+    /// Whether `t` is at an end of its piece or at a knot inside it (a joint or a possible
+    /// corner: the tangent does not give the side).
     pub at_joint: bool,
 }
 
@@ -331,7 +332,10 @@ impl PlanarIndex {
             t,
             p,
             tangent: j.d1,
-            at_joint: t <= pc.t0 || t >= pc.t1,
+            // A knot inside the piece may be a corner (a degree-1 polyline, a repeated knot):
+            // there the tangent of one side says nothing about the other, so it counts as a
+            // joint like the piece's ends (the side of `q` comes from the crossing parity).
+            at_joint: t <= pc.t0 || t >= pc.t1 || near_break(&pc.breaks, t),
         }
     }
 
@@ -451,6 +455,18 @@ pub fn minimise_on_piece(
     }
     best
 }
+
+/// Whether `t` is a knot of the piece up to [`KNOT_ULPS`] ulps (a foot found by a search may
+/// stop a few ulps off the corner it belongs to).
+fn near_break(breaks: &[f64], t: f64) -> bool {
+    breaks
+        .iter()
+        .any(|&k| (t - k).abs() <= KNOT_ULPS * f64::EPSILON * k.abs().max(1.0))
+}
+
+/// Tolerance of [`near_break`], in ulps of the knot: the searches stop within 4 ulps
+/// ([`GOLDEN_TOL_ULPS`]); twice that for margin.
+const KNOT_ULPS: f64 = 8.0;
 
 /// Golden-section search for the minimum of `|C(t) - q|` over `[ta, tb]` on piece `k`,
 /// using curve points only (no derivatives, so a zero speed does not disturb it); the
@@ -615,6 +631,47 @@ mod tests {
             hit.piece,
             hit.t,
             hit.p
+        );
+    }
+
+    /// A corner at a knot inside a piece (a degree-1 polyline turning at (1, 0), from a slanted
+    /// side to the top): a point just beyond the corner and 1e-15 below its height is outside,
+    /// 1e-6 from the corner, which is its closest point. (A curved piece elsewhere gives the
+    /// polyline a sagitta above that distance, so the side comes from the closest point.) The tangent of the span after the corner (pointing along the top edge) put it
+    /// inside, since the corner counted as a joint only at a piece's ends (campaign 1803, case
+    /// 17213: a random profile against the bottle, reported overlapping at 1.27e-6 apart).
+    #[test]
+    fn corner_inside_a_piece_gives_no_side_from_its_tangent() {
+        let profile = revdist::profile_file::from_toml_str(
+            r#"
+name = "quad-with-inner-corner"
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 1.0, 1.0]
+points = [[0.0, -1.0], [0.9, -1.0]]
+[[piece]]
+degree = 1
+knots = [0.0, 0.0, 0.5, 1.0, 1.0]
+points = [[0.9, -1.0], [1.0, 0.0], [0.5, 0.0]]
+[[piece]]
+degree = 2
+knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0]
+points = [[0.5, 0.0], [0.25, 0.4], [0.0, 0.0]]
+"#,
+        )
+        .expect("the profile builds");
+        let idx = crate::oracle::index(&profile);
+        let beyond = idx.signed([1.0 + 1e-6, -1e-15]);
+        assert!(
+            (beyond.value - 1e-6).abs() < 1e-12,
+            "signed {:e}, expected +1e-6 (outside)",
+            beyond.value
+        );
+        let within = idx.signed([1.0 - 1e-6, -1e-6]);
+        assert!(
+            within.value < 0.0,
+            "signed {:e}, expected inside",
+            within.value
         );
     }
 
