@@ -5,6 +5,7 @@
 //! recursive mid-parameter subdivision forms a flat bounding-volume hierarchy ([`tree`]).
 
 pub mod arc;
+pub mod arc_deviation;
 pub mod bound;
 pub mod fit;
 pub mod oracle;

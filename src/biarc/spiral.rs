@@ -22,10 +22,10 @@ use crate::poly::bernstein::{odd_roots, Bernstein};
 /// parallel line). Rounding of the products and differences is ~1e-15 relative for the degrees
 /// here (<= 18); 1e-10 leaves a wide margin while any real curvature signal of a profile is far
 /// larger. A span treated as straight may still bend at that level, so the tree bounds it by
-/// its control polygon ([`SpanSplits::straight_within_noise`]); one treated as circular (its
-/// `K` dismissed) has curvature variation below this relative level, and its bilens bound can
-/// be off by about that fraction of its size (not certified: see the closing note of the
-/// session that added control-polygon spirals).
+/// its control polygon ([`SpanSplits::straight_within_noise`]); one whose other tests were
+/// dismissed (an exact or near circle: `K`) by each arc's certified distance from its curve
+/// part ([`SpanSplits::spiral_within_noise`]), since its curvature may be non-monotone at that
+/// level and the bilens bound was measured 30 times too small there.
 pub const SPLIT_NOISE_REL: f64 = 1e-10;
 
 /// Root positions are isolated to this accuracy in the local parameter `u` (the bilens bound does
@@ -82,21 +82,27 @@ fn cross_diff(a: &Bernstein, b: &Bernstein, c: &Bernstein, d: &Bernstein) -> (Be
 }
 
 /// Pushes the sign changes of `p` in (0, 1) tagged with `reason`, unless `p` is noise relative
-/// to `scale`.
-fn push_roots(p: &Bernstein, scale: f64, reason: SplitReason, out: &mut Vec<(f64, SplitReason)>) {
+/// to `scale`. Returns whether it was dismissed as noise.
+fn push_roots(
+    p: &Bernstein,
+    scale: f64,
+    reason: SplitReason,
+    out: &mut Vec<(f64, SplitReason)>,
+) -> bool {
     if p.is_negligible(SPLIT_NOISE_REL * scale) {
-        return;
+        return true;
     }
     // Bernstein coefficients of one strict sign: no root on [0, 1] (convex hull property).
     let c = p.coeffs();
     if c.iter().all(|&v| v > 0.0) || c.iter().all(|&v| v < 0.0) {
-        return;
+        return false;
     }
     out.extend(
         odd_roots(p, SPLIT_ROOT_TOL)
             .into_iter()
             .map(|u| (u, reason)),
     );
+    false
 }
 
 /// Interior split parameters (local `u` in (0, 1), sorted, merged within [`MIN_SPLIT_GAP`]) that
@@ -117,6 +123,20 @@ pub struct SpanSplits {
     /// perturbed by 1e-11), and an unsplit inflection breaks the spiral property the bilens
     /// bound needs; the tree bounds it by its control polygon instead.
     pub straight_within_noise: bool,
+    /// True when the span is not straight but one of the other sign tests (`rho'`, `z'` or
+    /// `kappa'`) was below the noise test: an exact circle written as a rational span, a
+    /// near-circle whose curvature varies by less than [`SPLIT_NOISE_REL`] of itself, or a
+    /// span tiny against its coordinates. Its pieces are short spirals only to working
+    /// precision, so the tree bounds them without the bilens
+    /// ([`super::arc_deviation`]).
+    pub spiral_within_noise: bool,
+}
+
+/// What the sign tests of a span dismissed as rounding noise.
+#[derive(Debug, Clone, Copy, Default)]
+struct Dismissed {
+    straight: bool,
+    other: bool,
 }
 
 /// [`spiral_splits`] with the straightness flag of [`SpanSplits`].
@@ -127,34 +147,39 @@ pub fn split_span(h: &[[f64; 3]]) -> SpanSplits {
         return SpanSplits {
             splits: out,
             straight_within_noise: false,
+            spiral_within_noise: false,
         };
     }
     let w0 = h[0][2];
-    let straight = if h.iter().all(|p| p[2] == w0) {
+    let dismissed = if h.iter().all(|p| p[2] == w0) {
         polynomial_splits(h, w0, &mut out)
     } else {
         rational_splits(h, &mut out)
     };
     SpanSplits {
         splits: merge(out),
-        straight_within_noise: straight,
+        straight_within_noise: dismissed.straight,
+        spiral_within_noise: dismissed.other && !dismissed.straight,
     }
 }
 
 /// Polynomial span (all weights equal): `rho' = x'`, `z' = y'`, `D = x'y'' - y'x''`,
 /// `K = 2 D' S - 3 D S'` with `S = x'^2 + y'^2` (degree 4n - 6 instead of 8n - 6). Returns
-/// whether `D` is noise (straight).
-fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>) -> bool {
+/// which tests were noise.
+fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>) -> Dismissed {
     let x = Bernstein::new(h.iter().map(|p| p[0] / w0).collect());
     let y = Bernstein::new(h.iter().map(|p| p[1] / w0).collect());
     let (xd, yd) = (x.derivative(), y.derivative());
     let (xdd, ydd) = (xd.derivative(), yd.derivative());
     let scale = x.max_abs_coeff().max(y.max_abs_coeff());
-    push_roots(&xd, scale, SplitReason::RhoExtremum, out);
-    push_roots(&yd, scale, SplitReason::ZExtremum, out);
+    let mut other = push_roots(&xd, scale, SplitReason::RhoExtremum, out);
+    other |= push_roots(&yd, scale, SplitReason::ZExtremum, out);
     let (d, d_scale) = cross_diff(&xd, &ydd, &yd, &xdd);
     if d.is_negligible(SPLIT_NOISE_REL * d_scale) {
-        return true; // straight
+        return Dismissed {
+            straight: true,
+            other,
+        };
     }
     push_roots(&d, d_scale, SplitReason::Inflection, out);
     let s = combine(&xd.product(&xd), 1.0, &yd.product(&yd), 1.0);
@@ -162,20 +187,23 @@ fn polynomial_splits(h: &[[f64; 3]], w0: f64, out: &mut Vec<(f64, SplitReason)>)
     let rhs = d.product(&s.derivative());
     let k_scale = (2.0 * lhs.max_abs_coeff()).max(3.0 * rhs.max_abs_coeff());
     let k = combine(&lhs, 2.0, &rhs, -3.0);
-    push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
-    false
+    other |= push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
+    Dismissed {
+        straight: false,
+        other,
+    }
 }
 
-/// Rational span: the homogeneous formulas of the module doc. Returns whether `D` is noise.
-fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) -> bool {
+/// Rational span: the homogeneous formulas of the module doc. Returns which tests were noise.
+fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) -> Dismissed {
     let (x, y, w) = (coord(h, 0), coord(h, 1), coord(h, 2));
     let (xd, yd, wd) = (x.derivative(), y.derivative(), w.derivative());
     let (xdd, ydd, wdd) = (xd.derivative(), yd.derivative(), wd.derivative());
 
     let (rho_d, rho_scale) = cross_diff(&xd, &w, &x, &wd);
     let (z_d, z_scale) = cross_diff(&yd, &w, &y, &wd);
-    push_roots(&rho_d, rho_scale, SplitReason::RhoExtremum, out);
-    push_roots(&z_d, z_scale, SplitReason::ZExtremum, out);
+    let mut other = push_roots(&rho_d, rho_scale, SplitReason::RhoExtremum, out);
+    other |= push_roots(&z_d, z_scale, SplitReason::ZExtremum, out);
 
     // D = X (Y'W'' - W'Y'') - Y (X'W'' - W'X'') + W (X'Y'' - Y'X'')
     let (m0, s0) = cross_diff(&yd, &wdd, &wd, &ydd);
@@ -187,7 +215,10 @@ fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) -> bool {
         + w.max_abs_coeff() * (s2 + m2.max_abs_coeff());
     let d = combine(&combine(&t0, 1.0, &t1, -1.0), 1.0, &t2, 1.0);
     if d.is_negligible(SPLIT_NOISE_REL * d_scale) {
-        return true; // straight
+        return Dismissed {
+            straight: true,
+            other,
+        };
     }
     push_roots(&d, d_scale, SplitReason::Inflection, out);
 
@@ -199,8 +230,11 @@ fn rational_splits(h: &[[f64; 3]], out: &mut Vec<(f64, SplitReason)>) -> bool {
     let rhs = d.product(&w).product(&sd);
     let k_scale = lhs.max_abs_coeff().max(3.0 * rhs.max_abs_coeff());
     let k = combine(&lhs, 1.0, &rhs, -3.0);
-    push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
-    false
+    other |= push_roots(&k, k_scale, SplitReason::CurvatureExtremum, out);
+    Dismissed {
+        straight: false,
+        other,
+    }
 }
 
 fn merge(mut v: Vec<(f64, SplitReason)>) -> Vec<(f64, SplitReason)> {

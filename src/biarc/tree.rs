@@ -30,6 +30,7 @@
 use nalgebra::{Point2, Vector2};
 
 use super::arc::{cross, Arc};
+use super::arc_deviation::{ArcFrame, PieceArcDeviation};
 use super::bound::ulp_slack;
 use super::fit::{fit_biarc, g1_tolerance, CurveSample, PlanarCurve};
 use super::span::{SpanCurve, MAX_SPAN_DEGREE};
@@ -37,6 +38,14 @@ use super::spiral::split_span;
 use super::BiarcError;
 use crate::nurbs::Aabb2;
 use crate::profile::Profile;
+
+/// G1 defect (radians) allowed at the joints of [`SpiralBound::ArcDeviation`] spirals. Their
+/// curvature may vary non-monotonically at the spiral split's noise level (relative 1e-10),
+/// so the J-circle need not cross the curve and the joint is G1 only to the piece's departure
+/// from a spiral: 1.7e-11 rad measured on a quarter circle whose middle control point moved
+/// by 1e-11. The bound does not depend on it; a larger defect means the piece is no
+/// near-circle and the spiral falls back to the control polygon.
+pub const ARC_DEVIATION_G1_TOL: f64 = 1e-9;
 
 /// Index of a node in [`BiarcTree::nodes`] or [`BiarcTree::upper_nodes`].
 pub type NodeId = u32;
@@ -209,6 +218,28 @@ pub enum SpiralBound {
     /// in the convex hull of its Bezier control points, so their largest distance to the
     /// chord bounds the two-sided Hausdorff distance (see the module doc).
     ControlPolygon,
+    /// Biarcs bounded by each arc's certified distance from its curve part, with no spiral
+    /// property ([`super::arc_deviation`]: the circle's implicit equation on the Bernstein
+    /// form): for pieces whose curvature-derivative (or rho', z') test was rounding noise, such
+    /// as exact circles written as rational spans and near-circles, where the curvature may be
+    /// non-monotone at the noise level and the bilens bound is not certain.
+    ArcDeviation,
+}
+
+impl SpiralBound {
+    /// The more cautious of two kinds (for spirals merged across a knot).
+    fn strictest(self, other: SpiralBound) -> SpiralBound {
+        let rank = |k: SpiralBound| match k {
+            SpiralBound::Bilens => 0,
+            SpiralBound::ArcDeviation => 1,
+            SpiralBound::ControlPolygon => 2,
+        };
+        if rank(other) > rank(self) {
+            other
+        } else {
+            self
+        }
+    }
 }
 
 impl SpiralInfo {
@@ -297,6 +328,46 @@ impl PieceCurve<'_> {
     fn hull_deviation(&self, t0: f64, t1: f64, a: Point2<f64>, b: Point2<f64>) -> f64 {
         let mut deviation = 0.0f64;
         let mut scale = a.coords.amax().max(b.coords.amax());
+        self.for_each_part(t0, t1, |part, spread| {
+            for p in part {
+                let q = Point2::new(p[0] / p[2], p[1] / p[2]);
+                deviation = deviation.max(segment_distance(q, a, b));
+                scale = scale.max(q.coords.amax() * spread);
+            }
+        });
+        deviation + ulp_slack(scale)
+    }
+
+    /// A two-sided Hausdorff bound between the curve piece `[t0, t1]` and `arc` as the query
+    /// revolves it, needing no spiral property; `None` when the piece is too far from the
+    /// arc's circle or outside its bisector half-plane ([`PieceArcDeviation::bound`]).
+    ///
+    /// A flat arc (a segment, or a radius above `flat_radius`, revolved as its chord) is
+    /// bounded by the control polygon against the chord plus the sagitta, which covers the
+    /// arc too; any other by [`PieceArcDeviation`] on each span's part. The rounding of the
+    /// parts' control points is covered as in [`Self::hull_deviation`]; that of the arc's
+    /// end points (evaluated on the curve, and as the query puts them on the circle) by two
+    /// more [`ulp_slack`]s of `|c| + R`.
+    fn arc_deviation(&self, t0: f64, t1: f64, arc: &Arc, flat_radius: f64) -> Option<f64> {
+        if arc.is_segment() || arc.radius() > flat_radius {
+            let sagitta = if arc.is_segment() { 0.0 } else { arc.sagitta() };
+            return Some(self.hull_deviation(t0, t1, arc.start, arc.end) + sagitta);
+        }
+        let frame = ArcFrame::of(arc)?;
+        let mut deviation = PieceArcDeviation::new(frame);
+        let mut scale = arc.start.coords.amax().max(arc.end.coords.amax());
+        self.for_each_part(t0, t1, |part, spread| {
+            deviation.add_part(part);
+            for p in part {
+                scale = scale.max((p[0] / p[2]).abs().max((p[1] / p[2]).abs()) * spread);
+            }
+        });
+        Some(deviation.bound()? + ulp_slack(scale) + 2.0 * ulp_slack(frame.scale()))
+    }
+
+    /// Calls `f` with the homogeneous Bezier control points of each span's part of the curve
+    /// piece `[t0, t1]` (two de Casteljau cuts) and the part's weight spread `w_max / w_min`.
+    fn for_each_part(&self, t0: f64, t1: f64, mut f: impl FnMut(&[[f64; 3]], f64)) {
         let mut part = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
         for r in self.spans.iter().filter(|r| r.t1 > t0 && r.t0 < t1) {
             let len = r.t1 - r.t0;
@@ -313,13 +384,8 @@ impl PieceCurve<'_> {
                 .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
                     (lo.min(p[2]), hi.max(p[2]))
                 });
-            for p in &part[..=n] {
-                let q = Point2::new(p[0] / p[2], p[1] / p[2]);
-                deviation = deviation.max(segment_distance(q, a, b));
-                scale = scale.max(q.coords.amax() * w_max / w_min);
-            }
+            f(&part[..=n], w_max / w_min);
         }
-        deviation + ulp_slack(scale)
     }
 
     fn curvature(&self, t: f64) -> f64 {
@@ -475,6 +541,8 @@ impl BiarcTree {
             let split = split_span(curve.homogeneous);
             let bound = if split.straight_within_noise {
                 SpiralBound::ControlPolygon
+            } else if split.spiral_within_noise {
+                SpiralBound::ArcDeviation
             } else {
                 SpiralBound::Bilens
             };
@@ -503,9 +571,7 @@ impl BiarcTree {
                     let prev = self.spirals.last_mut().expect("checked above");
                     prev.param_range.1 = info.param_range.1;
                     prev.spans.1 = si as u32;
-                    if bound == SpiralBound::ControlPolygon {
-                        prev.bound = bound;
-                    }
+                    prev.bound = prev.bound.strictest(bound);
                 } else {
                     self.spirals.push(info);
                 }
@@ -574,14 +640,16 @@ impl BiarcTree {
         }
     }
 
-    /// Builds the node tree of spiral `s`: with biarcs and the bilens bound, or, when the
-    /// spiral is marked [`SpiralBound::ControlPolygon`] or the biarc build fails on it (no
-    /// biarc fits, a zero tangent, or the bound stalls: rounding made a piece that is not a
-    /// short spiral), with chords and the control-polygon bound.
+    /// Builds the node tree of spiral `s`: with biarcs and the bilens bound or the arc
+    /// deviation bound, or, when the spiral is marked [`SpiralBound::ControlPolygon`] or the
+    /// biarc build fails on it (no biarc fits, a zero tangent, a joint that is not G1, or the
+    /// bound stalls: rounding made a piece that is not a short spiral), with chords and the
+    /// control-polygon bound.
     fn build_spiral(&mut self, s: usize) -> Result<(), TreeError> {
         let (root, max_depth) = (self.nodes.len(), self.max_depth);
-        if self.spirals[s].bound == SpiralBound::Bilens {
-            if self.grow_spiral(s, SpiralBound::Bilens).is_ok() {
+        let kind = self.spirals[s].bound;
+        if kind != SpiralBound::ControlPolygon {
+            if self.grow_spiral(s, kind).is_ok() {
                 return Ok(());
             }
             self.nodes.truncate(root);
@@ -618,13 +686,20 @@ impl BiarcTree {
                 coeffs: &self.coeffs,
             };
             let (arcs, bound) = match kind {
-                SpiralBound::Bilens => {
+                SpiralBound::Bilens | SpiralBound::ArcDeviation => {
                     let fit = fit_biarc(&curve, &job.a, &job.b)
                         .map_err(|source| TreeError::Fit { piece, source })?;
                     // On a short spiral the J-circle crosses the curve and the joint is G1 to
                     // rounding; a larger defect means no crossing was found, so rounding made
-                    // the piece something else and its bilens bound is not certain.
-                    if fit.joint_defect() > g1_tolerance(&fit, self.coordinate_scale) {
+                    // the piece something else and its bilens bound is not certain. The arc
+                    // deviation bound needs no spiral: there the joint is G1 only to the
+                    // piece's departure from one (ARC_DEVIATION_G1_TOL).
+                    let g1 = g1_tolerance(&fit, self.coordinate_scale);
+                    let allowed = match kind {
+                        SpiralBound::Bilens => g1,
+                        _ => g1.max(ARC_DEVIATION_G1_TOL),
+                    };
+                    if fit.joint_defect() > allowed {
                         return Err(TreeError::Fit {
                             piece,
                             source: BiarcError::NotASpiral {
@@ -633,12 +708,28 @@ impl BiarcTree {
                             },
                         });
                     }
-                    // Bound of the curve piece against the biarc as the query revolves it
-                    // (flat arcs as chords): bilens bound plus the largest chord/arc distance.
-                    let flat = fit.arcs[0]
-                        .flattening_error(self.flat_radius)
-                        .max(fit.arcs[1].flattening_error(self.flat_radius));
-                    (fit.arcs, fit.eps + flat + stationary_slack)
+                    if kind == SpiralBound::ArcDeviation {
+                        let parts = [(job.a.t, fit.t_joint), (fit.t_joint, job.b.t)];
+                        let mut bound = 0.0f64;
+                        for (arc, (t0, t1)) in fit.arcs.iter().zip(parts) {
+                            let d = curve.arc_deviation(t0, t1, arc, self.flat_radius).ok_or(
+                                TreeError::Fit {
+                                    piece,
+                                    source: BiarcError::NotASpiral { t0, t1 },
+                                },
+                            )?;
+                            bound = bound.max(d);
+                        }
+                        (fit.arcs, bound)
+                    } else {
+                        // Bound of the curve piece against the biarc as the query revolves it
+                        // (flat arcs as chords): bilens bound plus the largest chord/arc
+                        // distance.
+                        let flat = fit.arcs[0]
+                            .flattening_error(self.flat_radius)
+                            .max(fit.arcs[1].flattening_error(self.flat_radius));
+                        (fit.arcs, fit.eps + flat + stationary_slack)
+                    }
                 }
                 SpiralBound::ControlPolygon => {
                     let (a, b) = (job.a.point, job.b.point);

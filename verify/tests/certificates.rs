@@ -343,23 +343,29 @@ fn repeated_end_control_point_profile() {
     }
 }
 
-/// Profiles on which rounding hides the spiral property (found by `proptest_stationary`,
-/// frozen in `regressions/near-stationary/`: near-stationary points, knots on stationary
-/// points, fins that round into micro-spirals, a line perturbed by 3.6e-11) build with
-/// control-polygon spirals, and a sphere placed at gaps 1e-2 and 1e-4 above, below and beside
-/// each such spiral passes the oracle's checks; so does the pose at which a witness was once
-/// 1.3e-11 off the perturbed line (against a tree eps of 5.5e-12).
-#[test]
-fn near_stationary_profiles() {
-    use revdist::biarc::{BiarcTree, SpiralBound};
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions/near-stationary");
+/// Builds every profile in `regressions/<dir>` (at least `min_files`) at eps 1e-3 and 1e-5 and
+/// checks, with the oracle, a sphere at gaps 1e-2 and 1e-4 above, below and beside each of the
+/// first two spirals bounded by `kind`; returns the directory.
+fn sphere_aimed_at_spirals(
+    dir: &str,
+    kind: revdist::biarc::SpiralBound,
+    min_files: usize,
+) -> std::path::PathBuf {
+    use revdist::biarc::BiarcTree;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("regressions")
+        .join(dir);
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     files.sort();
-    assert!(files.len() >= 8, "{} profiles in {dir:?}", files.len());
+    assert!(
+        files.len() >= min_files,
+        "{} profiles in {dir:?}",
+        files.len()
+    );
     let sphere = model("sphere").unwrap(); // radius 0.75, centre (0, 0, 0.75) in its frame
     let mut checked_spirals = 0;
     for path in &files {
@@ -369,7 +375,7 @@ fn near_stationary_profiles() {
             let aims: Vec<_> = tree
                 .spirals()
                 .iter()
-                .filter(|s| s.bound() == SpiralBound::ControlPolygon)
+                .filter(|s| s.bound() == kind)
                 .take(2)
                 .map(|s| {
                     let (p, q) = tree.node(s.root).chord();
@@ -404,6 +410,22 @@ fn near_stationary_profiles() {
         checked_spirals >= files.len(),
         "{checked_spirals} spirals aimed at"
     );
+    dir
+}
+
+/// Profiles on which rounding hides the spiral property (found by `proptest_stationary`,
+/// frozen in `regressions/near-stationary/`: near-stationary points, knots on stationary
+/// points, fins that round into micro-spirals, a line perturbed by 3.6e-11) build with
+/// control-polygon spirals, and a sphere placed at gaps 1e-2 and 1e-4 above, below and beside
+/// each such spiral passes the oracle's checks; so does the pose at which a witness was once
+/// 1.3e-11 off the perturbed line (against a tree eps of 5.5e-12).
+#[test]
+fn near_stationary_profiles() {
+    let dir = sphere_aimed_at_spirals(
+        "near-stationary",
+        revdist::biarc::SpiralBound::ControlPolygon,
+        8,
+    );
     let perturbed = revdist::profile_file::load_path(&dir.join("perturbed-line.toml")).unwrap();
     let pose = verify::queries::PoseSpec {
         translation: [0.8329134106710407, 1.7396780584121636, -0.7616803075236778],
@@ -423,6 +445,15 @@ fn near_stationary_profiles() {
         &QueryOptions::default(),
         "perturbed line against the pawn",
     );
+}
+
+/// Near-circles whose curvature derivative is rounding noise to the spiral split
+/// (`regressions/near-circle/`: quarter circles whose middle control point moved by ~1e-11,
+/// where the bilens node bound was up to 30 times too small) build with arc-deviation spirals,
+/// and a sphere at gaps 1e-2 and 1e-4 on four sides of each passes the oracle's checks.
+#[test]
+fn near_circle_profiles() {
+    sphere_aimed_at_spirals("near-circle", revdist::biarc::SpiralBound::ArcDeviation, 4);
 }
 
 /// A random profile whose curve runs down a line and back up it (speed exactly zero inside a
