@@ -6,20 +6,25 @@
 //! (the two children of a node are adjacent), and [`BiarcTree::rebuild`] refills the same
 //! vectors, so rebuilding a deforming profile allocates nothing once capacities have grown.
 //!
-//! **Two kinds of spiral** ([`SpiralBound`]). A spiral's nodes are biarcs with the bilens bound
-//! when the piece is a short spiral. Where rounding cannot establish that, the nodes are chords
-//! (two collinear segments) bounded by the piece's control polygon, which needs no spiral
-//! property and converges quadratically instead of cubically: a span straight only to
-//! working precision (its curvature below the split's noise test, so an inflection may hide
-//! in it), and any spiral on which the biarc build fails (no minor-arc biarc, a zero tangent,
-//! a joint that is not G1: near-stationary points, micro-spirals between two rounded roots,
-//! fins that rounding bends). The built-in exact models have none; the freeform ones and
-//! M_t frames a few straight spans, which are single chords either way.
+//! **Three kinds of spiral** ([`SpiralBound`]). A spiral's nodes are biarcs with the bilens bound
+//! when the piece is a short spiral. Where rounding cannot establish that:
+//! - a span whose curvature-derivative test (or rho', z') was rounding noise, an exact circle
+//!   written as a rational span or a near-circle whose curvature may be non-monotone at that
+//!   level, keeps biarcs but bounds each arc by its certified distance from its curve part
+//!   ([`super::arc_deviation`]), which needs no spiral property (every rational arc of the
+//!   built-in models; the bounds match the bilens ones there to rounding);
+//! - a span straight only to working precision (its curvature below the split's noise test, so
+//!   an inflection may hide in it), and any spiral on which the biarc build fails (no
+//!   minor-arc biarc, a zero tangent, a joint that is not G1: near-stationary points,
+//!   micro-spirals between two rounded roots, fins that rounding bends), uses chords (two
+//!   collinear segments) bounded by the piece's control polygon, which converges
+//!   quadratically instead of cubically. The built-in exact models have none; the freeform
+//!   ones and M_t frames a few straight spans, which are single chords either way.
 //!
 //! **What a node guarantees** (all in the (rho, z) half-plane, all two-sided where stated):
 //! - [`BiarcNode::eps`]: the two-sided Hausdorff distance between the node's curve piece and its
-//!   biarc is at most `eps` (bilens bound, [`super::bound`], or the control-polygon bound of a
-//!   chord node), and so is the distance to the biarc with its near-straight arcs replaced by
+//!   biarc is at most `eps` (bilens bound, [`super::bound`], the arc deviation bound, or the
+//!   control-polygon bound of a chord node), and so is the distance to the biarc with its near-straight arcs replaced by
 //!   chords (their sagitta is added; [`super::arc::FLAT_RADIUS_REL`]).
 //! - [`BiarcNode::bounding_disk`]: the curve piece lies inside the disk.
 //! - [`BiarcNode::chord`] with [`BiarcNode::chord_distance`]: every point of the curve piece is

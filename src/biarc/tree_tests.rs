@@ -454,3 +454,109 @@ fn near_circles_use_arc_deviation_bounds() {
         }
     }
 }
+
+/// One arc of a drawn near-circle: the rational quadratic of the circle arc from angle `a0` to
+/// `a1` (centre `c`, radius `r`), degree-elevated to `degree`, with each interior control point
+/// moved by up to `bump` in a direction from `dirs` (end points stay on the circle, so
+/// consecutive arcs join exactly).
+fn near_circle_arc(
+    c: Point2<f64>,
+    r: f64,
+    (a0, a1): (f64, f64),
+    degree: usize,
+    bump: f64,
+    dirs: &mut impl Iterator<Item = f64>,
+) -> NurbsCurve {
+    let at = |a: f64| p(c.x + r * a.cos(), c.y + r * a.sin());
+    let half = 0.5 * (a1 - a0);
+    let w1 = half.cos();
+    let mid = p(
+        c.x + r / w1 * (a0 + half).cos(),
+        c.y + r / w1 * (a0 + half).sin(),
+    );
+    let mut h = vec![
+        [at(a0).x, at(a0).y, 1.0],
+        [mid.x * w1, mid.y * w1, w1],
+        [at(a1).x, at(a1).y, 1.0],
+    ];
+    while h.len() <= degree {
+        let n = h.len(); // the new degree
+        let mut e = vec![h[0]];
+        for i in 1..n {
+            let s = i as f64 / n as f64;
+            e.push(std::array::from_fn(|k| {
+                s * h[i - 1][k] + (1.0 - s) * h[i][k]
+            }));
+        }
+        e.push(h[n - 1]);
+        h = e;
+    }
+    let last = h.len() - 1;
+    let points = h
+        .iter()
+        .enumerate()
+        .map(|(i, q)| {
+            let mut x = p(q[0] / q[2], q[1] / q[2]);
+            if i != 0 && i != last {
+                let (angle, size) = (dirs.next().unwrap(), dirs.next().unwrap());
+                x += nalgebra::Vector2::new(angle.cos(), angle.sin()) * (bump * size);
+            }
+            x
+        })
+        .collect();
+    let weights = h.iter().map(|q| q[2]).collect();
+    let mut knots = vec![0.0; degree + 1];
+    knots.extend(vec![1.0; degree + 1]);
+    NurbsCurve::new(degree, knots, points, Some(weights)).unwrap()
+}
+
+proptest::proptest! {
+    // 48 cases unless PROPTEST_CASES asks for more (the seed comes from PROPTEST_RNG_SEED).
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(48),
+        failure_persistence: None,
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// Random near-circles against dense sampling: rings (a circle of 4-6 arcs about a point
+    /// off the axis) and spheres (a half circle of 2-4 arcs about a point on it), each arc a
+    /// rational quadratic degree-elevated to 2-6 whose interior control points move by
+    /// 1e-14..1e-6 of the radius (or not at all). Every node of every tree must hold its
+    /// bound against the sampled curve, whichever kind of spiral bound the split chose
+    /// (exact and near circles take the arc deviation; larger bumps make curvature extrema
+    /// the split finds, and bilens spirals).
+    #[test]
+    fn near_circles_hold_their_node_bounds(
+        ring in proptest::prelude::any::<bool>(),
+        arcs in 2usize..=6,
+        degree in 2usize..=6,
+        radius in 0.1f64..0.6,
+        centre in (0.0f64..1.0, -1.0f64..1.0),
+        start in 0.0f64..std::f64::consts::TAU,
+        bump_exp in -14.0f64..-6.0,
+        exact in proptest::prelude::any::<bool>(),
+        dirs in proptest::collection::vec((0.0f64..std::f64::consts::TAU, 0.0f64..1.0), 64),
+        eps_exp in 3i32..=8,
+    ) {
+        use std::f64::consts::{PI, TAU};
+        let bump = if exact { 0.0 } else { radius * 10f64.powf(bump_exp) };
+        let mut dirs = dirs.iter().flat_map(|&(a, s)| [a, s]).cycle();
+        let (c, range, arcs) = if ring {
+            // arcs of at most 90 degrees: control points within sqrt(2) r of the centre
+            (p(1.5 * radius + 0.05 + centre.0, centre.1), (start, start + TAU), arcs.max(4))
+        } else {
+            (p(0.0, centre.1), (-0.5 * PI, 0.5 * PI), arcs.min(4))
+        };
+        let step = (range.1 - range.0) / arcs as f64;
+        let pieces = (0..arcs)
+            .map(|i| {
+                let a0 = range.0 + step * i as f64;
+                let a1 = if i + 1 == arcs { range.1 } else { a0 + step };
+                near_circle_arc(c, radius, (a0, a1), degree, bump, &mut dirs)
+            })
+            .collect();
+        let prof = Profile::new("near-circle", pieces).unwrap();
+        let tree = BiarcTree::build(&prof, 10f64.powi(-eps_exp)).unwrap();
+        check_tree_with(&prof, &tree, SAMPLES);
+    }
+}

@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use revdist::biarc::{Arc, BiarcTree};
+use revdist::biarc::{Arc, BiarcTree, SpiralBound};
 use revdist::profile::Profile;
 
 use crate::input::{load_profile, write_file};
@@ -48,11 +48,21 @@ pub fn run(args: Args) -> CmdResult {
         .filter(|n| n.is_leaf())
         .map(|n| n.eps())
         .fold(0.0, f64::max);
+    // How each spiral's node bounds are certified (see `SpiralBound`).
+    let count = |kind: SpiralBound| tree.spirals().iter().filter(|s| s.bound() == kind).count();
+    let (bilens, arc_deviation, control_polygon) = (
+        count(SpiralBound::Bilens),
+        count(SpiralBound::ArcDeviation),
+        count(SpiralBound::ControlPolygon),
+    );
     if args.json {
         let v = serde_json::json!({
             "profile": profile.name(),
             "eps": args.eps,
             "spirals": st.spirals,
+            "spirals_bilens": bilens,
+            "spirals_arc_deviation": arc_deviation,
+            "spirals_control_polygon": control_polygon,
             "nodes": st.nodes,
             "leaves": st.leaves,
             "arcs": 2 * st.leaves,
@@ -66,7 +76,11 @@ pub fn run(args: Args) -> CmdResult {
     } else {
         println!("profile      {}", profile.name());
         println!("eps          {:e}", args.eps);
-        println!("spirals      {}", st.spirals);
+        println!(
+            "spirals      {} (bounds: {bilens} bilens, {arc_deviation} arc deviation, \
+             {control_polygon} control polygon)",
+            st.spirals
+        );
         println!(
             "nodes        {} ({} leaves, {} arcs)",
             st.nodes,
