@@ -227,7 +227,9 @@ pub enum SpiralBound {
     /// property ([`super::arc_deviation`]: the circle's implicit equation on the Bernstein
     /// form): for pieces whose curvature-derivative (or rho', z') test was rounding noise, such
     /// as exact circles written as rational spans and near-circles, where the curvature may be
-    /// non-monotone at the noise level and the bilens bound is not certain.
+    /// non-monotone at the noise level and the bilens bound is not certain; and for spirals
+    /// merged across a knot, whose monotonicity there rests on curvatures compared within a
+    /// tolerance.
     ArcDeviation,
 }
 
@@ -576,7 +578,13 @@ impl BiarcTree {
                     let prev = self.spirals.last_mut().expect("checked above");
                     prev.param_range.1 = info.param_range.1;
                     prev.spans.1 = si as u32;
-                    prev.bound = prev.bound.strictest(bound);
+                    // The merge compared curvatures evaluated at the knot within a tolerance,
+                    // so the joined piece is curvature-monotone only to that tolerance: no
+                    // bilens (the arc deviation needs no spiral property).
+                    prev.bound = prev
+                        .bound
+                        .strictest(bound)
+                        .strictest(SpiralBound::ArcDeviation);
                 } else {
                     self.spirals.push(info);
                 }

@@ -560,3 +560,43 @@ proptest::proptest! {
         check_tree_with(&prof, &tree, SAMPLES);
     }
 }
+
+/// A cubic Bezier `b` with the knot 1/2 inserted (Boehm): the same curve as two spans joined
+/// C-infinity, closed to the axis by segments.
+fn bezier_with_midknot(b: [Point2<f64>; 4]) -> Profile {
+    let half = |x: Point2<f64>, y: Point2<f64>| nalgebra::center(&x, &y);
+    let points = vec![
+        b[0],
+        half(b[0], b[1]),
+        half(b[1], b[2]),
+        half(b[2], b[3]),
+        b[3],
+    ];
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
+    let spline = NurbsCurve::new(3, knots, points, None).unwrap();
+    let bottom = NurbsCurve::line(p(0.0, b[0].y), b[0]).unwrap();
+    let top = NurbsCurve::line(b[3], p(0.0, b[3].y)).unwrap();
+    Profile::new("midknot", vec![bottom, spline, top]).unwrap()
+}
+
+/// A spiral merged across a knot rests on curvatures compared at the knot within a
+/// tolerance, so it is bounded by the arc deviation, not the bilens; a spiral cubic written
+/// as two spans merges into one such spiral, and every node holds against dense sampling.
+#[test]
+fn spirals_merged_across_knots_use_arc_deviation() {
+    use super::tree::SpiralBound;
+    let prof = bezier_with_midknot([p(0.5, 0.0), p(0.9, 0.0), p(1.2, 0.15), p(1.4, 0.5)]);
+    for eps in [1e-3, 1e-5] {
+        let tree = BiarcTree::build(&prof, eps).unwrap();
+        let merged: Vec<_> = tree
+            .spirals()
+            .iter()
+            .filter(|s| s.piece == 1 && s.param_range.0 < 0.5 && s.param_range.1 > 0.5)
+            .collect();
+        assert!(!merged.is_empty(), "no spiral spans the knot");
+        assert!(merged
+            .iter()
+            .all(|s| s.bound() == SpiralBound::ArcDeviation));
+        check_tree_with(&prof, &tree, SAMPLES);
+    }
+}
