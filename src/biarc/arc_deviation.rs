@@ -16,7 +16,7 @@
 //! then, as `|C - c| + R >= 2R - delta_0`, the same with `2R - delta_0` in place of `R`. Forming
 //! `U` first keeps the cancellation harmless: the rounding of `F_j` is a few ulps of `R^2 W^2`
 //! plus `|U|` times the rounding of `U` (about `eps_mach |c| W`), i.e. `~eps_mach (|c| + R)` in
-//! distance, which [`PieceArcDeviation::bound`] adds with a running error bound.
+//! distance, which [`PieceArcDeviation::add_part`] adds with a running error bound.
 //!
 //! **Angular part.** The arc is the part of the circle between the rays from `c` through its
 //! ends, `e_lo` and `e_hi` (sweep below pi). The linear forms `cross(e_lo, C - c)`,
@@ -38,7 +38,7 @@ use nalgebra::{Point2, Vector2};
 
 /// Largest arc sweep (radians) the angular part accepts. Any value below pi works (the
 /// bisector half-plane must contain the arc with a margin); the arcs of a biarc fitted to a
-/// spiral that turns at most 90 degrees turn far less.
+/// spiral, which turns at most 90 degrees, stay below it.
 pub const MAX_SWEEP: f64 = 2.0;
 
 /// Running rounding bound of one Bernstein coefficient of `F` in units of `eps_mach` times the
