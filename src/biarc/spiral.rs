@@ -133,7 +133,7 @@ pub struct SpanSplits {
 }
 
 /// What the sign tests of a span dismissed as rounding noise.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct Dismissed {
     straight: bool,
     other: bool,

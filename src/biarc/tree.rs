@@ -24,8 +24,9 @@
 //! **What a node guarantees** (all in the (rho, z) half-plane, all two-sided where stated):
 //! - [`BiarcNode::eps`]: the two-sided Hausdorff distance between the node's curve piece and its
 //!   biarc is at most `eps` (bilens bound, [`super::bound`], the arc deviation bound, or the
-//!   control-polygon bound of a chord node), and so is the distance to the biarc with its near-straight arcs replaced by
-//!   chords (their sagitta is added; [`super::arc::FLAT_RADIUS_REL`]).
+//!   control-polygon bound of a chord node), and so is the distance to the biarc with its
+//!   near-straight arcs replaced by chords (their sagitta is added;
+//!   [`super::arc::FLAT_RADIUS_REL`]).
 //! - [`BiarcNode::bounding_disk`]: the curve piece lies inside the disk.
 //! - [`BiarcNode::chord`] with [`BiarcNode::chord_distance`]: every point of the curve piece is
 //!   within `chord_distance` of the chord segment (the paper's "line segment that best
@@ -212,17 +213,12 @@ pub struct SpiralInfo {
     bound: SpiralBound,
 }
 
-/// How the node bounds of a spiral are certified.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// How the node bounds of a spiral are certified, ordered from the bound that needs the most
+/// of the piece to the one that needs the least (a spiral merged from two takes the larger).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SpiralBound {
     /// Biarcs with the bilens bound (section 4.1): the piece is a short spiral.
     Bilens,
-    /// Chords with the control-polygon bound: for pieces whose spiral property rounding cannot
-    /// establish (a span straight only to working precision, a piece on which no biarc fits:
-    /// near-stationary points, micro-spirals between two rounded roots). Each curve piece lies
-    /// in the convex hull of its Bezier control points, so their largest distance to the
-    /// chord bounds the two-sided Hausdorff distance (see the module doc).
-    ControlPolygon,
     /// Biarcs bounded by each arc's certified distance from its curve part, with no spiral
     /// property ([`super::arc_deviation`]: the circle's implicit equation on the Bernstein
     /// form): for pieces whose curvature-derivative (or rho', z') test was rounding noise, such
@@ -231,22 +227,12 @@ pub enum SpiralBound {
     /// merged across a knot, whose monotonicity there rests on curvatures compared within a
     /// tolerance.
     ArcDeviation,
-}
-
-impl SpiralBound {
-    /// The more cautious of two kinds (for spirals merged across a knot).
-    fn strictest(self, other: SpiralBound) -> SpiralBound {
-        let rank = |k: SpiralBound| match k {
-            SpiralBound::Bilens => 0,
-            SpiralBound::ArcDeviation => 1,
-            SpiralBound::ControlPolygon => 2,
-        };
-        if rank(other) > rank(self) {
-            other
-        } else {
-            self
-        }
-    }
+    /// Chords with the control-polygon bound: for pieces whose spiral property rounding cannot
+    /// establish (a span straight only to working precision, a piece on which no biarc fits:
+    /// near-stationary points, micro-spirals between two rounded roots). Each curve piece lies
+    /// in the convex hull of its Bezier control points, so their largest distance to the
+    /// chord bounds the two-sided Hausdorff distance (see the module doc).
+    ControlPolygon,
 }
 
 impl SpiralInfo {
@@ -335,12 +321,12 @@ impl PieceCurve<'_> {
     fn hull_deviation(&self, t0: f64, t1: f64, a: Point2<f64>, b: Point2<f64>) -> f64 {
         let mut deviation = 0.0f64;
         let mut scale = a.coords.amax().max(b.coords.amax());
-        self.for_each_part(t0, t1, |part, spread| {
+        self.for_each_part(t0, t1, |part, part_scale| {
             for p in part {
                 let q = Point2::new(p[0] / p[2], p[1] / p[2]);
                 deviation = deviation.max(segment_distance(q, a, b));
-                scale = scale.max(q.coords.amax() * spread);
             }
+            scale = scale.max(part_scale);
         });
         deviation + ulp_slack(scale)
     }
@@ -363,17 +349,17 @@ impl PieceCurve<'_> {
         let frame = ArcFrame::of(arc)?;
         let mut deviation = PieceArcDeviation::new(frame);
         let mut scale = arc.start.coords.amax().max(arc.end.coords.amax());
-        self.for_each_part(t0, t1, |part, spread| {
+        self.for_each_part(t0, t1, |part, part_scale| {
             deviation.add_part(part);
-            for p in part {
-                scale = scale.max((p[0] / p[2]).abs().max((p[1] / p[2]).abs()) * spread);
-            }
+            scale = scale.max(part_scale);
         });
         Some(deviation.bound()? + ulp_slack(scale) + 2.0 * ulp_slack(frame.scale()))
     }
 
     /// Calls `f` with the homogeneous Bezier control points of each span's part of the curve
-    /// piece `[t0, t1]` (two de Casteljau cuts) and the part's weight spread `w_max / w_min`.
+    /// piece `[t0, t1]` (two de Casteljau cuts) and the magnitude their rounding is relative
+    /// to: the largest coordinate of the control points times the weights' spread
+    /// `w_max / w_min`.
     fn for_each_part(&self, t0: f64, t1: f64, mut f: impl FnMut(&[[f64; 3]], f64)) {
         let mut part = [[0.0f64; 3]; MAX_SPAN_DEGREE + 1];
         for r in self.spans.iter().filter(|r| r.t1 > t0 && r.t0 < t1) {
@@ -391,7 +377,10 @@ impl PieceCurve<'_> {
                 .fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
                     (lo.min(p[2]), hi.max(p[2]))
                 });
-            f(&part[..=n], w_max / w_min);
+            let part_scale = part[..=n].iter().fold(0.0f64, |m, p| {
+                m.max(Point2::new(p[0] / p[2], p[1] / p[2]).coords.amax() * w_max / w_min)
+            });
+            f(&part[..=n], part_scale);
         }
     }
 
@@ -581,10 +570,7 @@ impl BiarcTree {
                     // The merge compared curvatures evaluated at the knot within a tolerance,
                     // so the joined piece is curvature-monotone only to that tolerance: no
                     // bilens (the arc deviation needs no spiral property).
-                    prev.bound = prev
-                        .bound
-                        .strictest(bound)
-                        .strictest(SpiralBound::ArcDeviation);
+                    prev.bound = prev.bound.max(bound).max(SpiralBound::ArcDeviation);
                 } else {
                     self.spirals.push(info);
                 }
