@@ -224,22 +224,7 @@ fn binomial_row(n: usize) -> [f64; 2 * super::span::MAX_SPAN_DEGREE + 1] {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Homogeneous coefficients of the rational quadratic of the circle arc from angle `a0` to
-    /// `a1` (|a1 - a0| < pi), with its middle control point moved by `bump` along the bisector.
-    fn quadratic_arc(c: Point2<f64>, r: f64, a0: f64, a1: f64, bump: f64) -> Vec<[f64; 3]> {
-        let at = |a: f64| c + Vector2::new(a.cos(), a.sin()) * r;
-        let half = 0.5 * (a1 - a0);
-        let mid_dir = Vector2::new((a0 + half).cos(), (a0 + half).sin());
-        let p1 = c + mid_dir * (r / half.cos() + bump);
-        let w1 = half.cos();
-        let (p0, p2) = (at(a0), at(a1));
-        vec![
-            [p0.x, p0.y, 1.0],
-            [p1.x * w1, p1.y * w1, w1],
-            [p2.x, p2.y, 1.0],
-        ]
-    }
+    use crate::biarc::test_curves::circle_arc_quadratic as quadratic_arc;
 
     fn point(h: &[[f64; 3]], t: f64) -> Point2<f64> {
         let b = [(1.0 - t) * (1.0 - t), 2.0 * t * (1.0 - t), t * t];

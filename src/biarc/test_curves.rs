@@ -1,4 +1,4 @@
-//! Analytic spirals for tests: clothoids (Euler spirals) and ellipse arcs.
+//! Analytic curves for tests: clothoids (Euler spirals), ellipse arcs and rational circle arcs.
 
 use nalgebra::{Point2, Vector2};
 
@@ -80,4 +80,21 @@ impl PlanarCurve for Ellipse {
             Vector2::new(-self.a * s, self.b * c),
         )
     }
+}
+
+/// Homogeneous Bezier coefficients `[x w, y w, w]` of the rational quadratic of the circle arc
+/// about `c` of radius `r` from angle `a0` to `a1` (`|a1 - a0| < pi`), its middle control point
+/// moved outward along the bisector by `bump` (0: the exact arc).
+pub fn circle_arc_quadratic(c: Point2<f64>, r: f64, a0: f64, a1: f64, bump: f64) -> Vec<[f64; 3]> {
+    let at = |a: f64| c + Vector2::new(a.cos(), a.sin()) * r;
+    let half = 0.5 * (a1 - a0);
+    let mid_dir = Vector2::new((a0 + half).cos(), (a0 + half).sin());
+    let p1 = c + mid_dir * (r / half.cos() + bump);
+    let w1 = half.cos();
+    let (p0, p2) = (at(a0), at(a1));
+    vec![
+        [p0.x, p0.y, 1.0],
+        [p1.x * w1, p1.y * w1, w1],
+        [p2.x, p2.y, 1.0],
+    ]
 }

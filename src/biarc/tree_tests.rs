@@ -4,6 +4,7 @@ use super::fit::PlanarCurve;
 use super::oracle::sampled_hausdorff;
 use super::tree::{BiarcTree, TreeError};
 use crate::nurbs::NurbsCurve;
+use crate::poly::bernstein::Bernstein;
 use crate::profile::Profile;
 use nalgebra::Point2;
 
@@ -467,30 +468,16 @@ fn near_circle_arc(
     bump: f64,
     dirs: &mut impl Iterator<Item = f64>,
 ) -> NurbsCurve {
-    let at = |a: f64| p(c.x + r * a.cos(), c.y + r * a.sin());
-    let half = 0.5 * (a1 - a0);
-    let w1 = half.cos();
-    let mid = p(
-        c.x + r / w1 * (a0 + half).cos(),
-        c.y + r / w1 * (a0 + half).sin(),
-    );
-    let mut h = vec![
-        [at(a0).x, at(a0).y, 1.0],
-        [mid.x * w1, mid.y * w1, w1],
-        [at(a1).x, at(a1).y, 1.0],
-    ];
-    while h.len() <= degree {
-        let n = h.len(); // the new degree
-        let mut e = vec![h[0]];
-        for i in 1..n {
-            let s = i as f64 / n as f64;
-            e.push(std::array::from_fn(|k| {
-                s * h[i - 1][k] + (1.0 - s) * h[i][k]
-            }));
+    let coordinate = |k: usize| {
+        let quadratic = super::test_curves::circle_arc_quadratic(c, r, a0, a1, 0.0);
+        let mut b = Bernstein::new(quadratic.iter().map(|q| q[k]).collect());
+        while b.degree() < degree {
+            b = b.elevate();
         }
-        e.push(h[n - 1]);
-        h = e;
-    }
+        b.coeffs().to_vec()
+    };
+    let (x, y, w) = (coordinate(0), coordinate(1), coordinate(2));
+    let h: Vec<[f64; 3]> = (0..=degree).map(|i| [x[i], y[i], w[i]]).collect();
     let last = h.len() - 1;
     let points = h
         .iter()
