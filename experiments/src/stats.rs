@@ -30,6 +30,22 @@ pub fn us(d: Duration) -> f64 {
     d.as_secs_f64() * 1e6
 }
 
+/// Wall-clock time of `f` on each item in turn, microseconds, one sample per item: the
+/// *blocked* protocol (one method alone over all items in a row). Producing an item (the
+/// iterator's `next`) is not timed, so setup such as posing a solid stays outside.
+pub fn time_each<T, E>(
+    items: impl IntoIterator<Item = T>,
+    mut f: impl FnMut(T) -> Result<(), E>,
+) -> Result<Vec<f64>, E> {
+    let mut times = Vec::new();
+    for item in items {
+        let t = std::time::Instant::now();
+        f(item)?;
+        times.push(us(t.elapsed()));
+    }
+    Ok(times)
+}
+
 /// A byte count for tables: `6.2 KB`, `30.8 MB`, `1.05 GB` (decimal units).
 pub fn human_bytes(b: f64) -> String {
     if b >= 1e9 {
@@ -79,5 +95,15 @@ mod tests {
         assert_eq!(human_bytes(6176.0), "6.2 KB");
         assert_eq!(human_bytes(30_835_732.0), "30.8 MB");
         assert_eq!(human_bytes(1.05e9), "1.05 GB");
+        let mut seen = Vec::new();
+        let times = time_each([1, 2, 3], |k| {
+            seen.push(k);
+            Ok::<(), ()>(())
+        });
+        assert_eq!((times.map(|t| t.len()), seen), (Ok(3), vec![1, 2, 3]));
+        assert_eq!(
+            time_each([1, 2], |k| if k == 2 { Err(k) } else { Ok(()) }),
+            Err(2)
+        );
     }
 }

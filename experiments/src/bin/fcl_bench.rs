@@ -35,7 +35,7 @@ use experiments::args as cli;
 use experiments::baseline_mesh::{agrees_with_fcl, Layout};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::shapes::query_tree_bytes;
-use experiments::stats::human_bytes;
+use experiments::stats::{human_bytes, median, quantile, time_each, us};
 use nalgebra::Isometry3;
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
@@ -126,20 +126,6 @@ fn parse_args() -> Result<Args, String> {
     }
     a.pairs = cli::pairs(&pairs, "--pairs")?;
     Ok(a)
-}
-
-fn median(v: &[f64]) -> f64 {
-    quantile(v, 0.5)
-}
-
-fn quantile(v: &[f64], q: f64) -> f64 {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    s[((s.len() - 1) as f64 * q).round() as usize]
-}
-
-fn us(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e6
 }
 
 /// One row of the table.
@@ -379,22 +365,17 @@ fn bench_row(
     }
     row.rev_trees_warm = median(&warm_times[0]);
     // Blocked: each method alone over all poses (answers were cross-checked above).
-    let mut blocked = Vec::with_capacity(poses.len());
-    for pose in poses {
-        let b = sb.with_pose(*pose);
-        let t = Instant::now();
+    let blocked = time_each(poses.iter().map(|pose| sb.with_pose(*pose)), |b| {
         std::hint::black_box(distance(&sa, &b, &trees));
-        blocked.push(us(t.elapsed()));
-    }
+        Ok::<(), Box<dyn std::error::Error>>(())
+    })?;
     row.rev_trees_blocked = median(&blocked);
     for (la, lb) in &layouts {
         let lb = lb.as_ref().unwrap_or(la);
-        blocked.clear();
-        for pose in poses {
-            let t = Instant::now();
+        let blocked = time_each(poses, |pose| {
             std::hint::black_box(la.obbrss.distance(&lb.obbrss, &id, pose)?);
-            blocked.push(us(t.elapsed()));
-        }
+            Ok::<(), Box<dyn std::error::Error>>(())
+        })?;
         row.fcl_obbrss_blocked.push(median(&blocked));
     }
     let best = |f: &dyn Fn(&(f64, f64)) -> f64| {

@@ -28,7 +28,7 @@ use experiments::poses::{pair_seed, SmoothMotion};
 use experiments::progress;
 use experiments::provenance::Provenance;
 use experiments::shapes::{diagonal, paper_pairs, PAPER_EPS};
-use experiments::stats::{mean, median, us};
+use experiments::stats::{mean, median, time_each, us};
 use nalgebra::Isometry3;
 use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};
@@ -305,25 +305,20 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             // Blocked: each method alone over the whole motion, as a simulation loop over
             // one pair runs it (answers were cross-checked above).
             let mut cache = QueryCache::default();
-            let mut times = Vec::with_capacity(n);
-            for pose in &poses[..n] {
-                let posed = sb.with_pose(*pose);
-                let t = Instant::now();
+            let times = time_each(poses[..n].iter().map(|pose| sb.with_pose(*pose)), |posed| {
                 std::hint::black_box(distance_cached(sa, &posed, &opts, &mut cache));
-                times.push(us(t.elapsed()));
-            }
+                Ok::<(), Box<dyn std::error::Error>>(())
+            })?;
             row.rev_blocked_mean = mean(&times);
-            times.clear();
             let l = row.best;
-            for pose in &poses[..n] {
-                let t = Instant::now();
+            let times = time_each(&poses[..n], |pose| {
                 std::hint::black_box(fa.layouts[l].1.distance(
                     &fb.layouts[l].1,
                     &Isometry3::identity(),
                     pose,
                 )?);
-                times.push(us(t.elapsed()));
-            }
+                Ok::<(), Box<dyn std::error::Error>>(())
+            })?;
             row.fcl_blocked_mean = mean(&times);
             rows.push(row);
         }
