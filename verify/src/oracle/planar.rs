@@ -637,9 +637,10 @@ mod tests {
     /// A corner at a knot inside a piece (a degree-1 polyline turning at (1, 0), from a slanted
     /// side to the top): a point just beyond the corner and 1e-15 below its height is outside,
     /// 1e-6 from the corner, which is its closest point. (A curved piece elsewhere gives the
-    /// polyline a sagitta above that distance, so the side comes from the closest point.) The tangent of the span after the corner (pointing along the top edge) put it
-    /// inside, since the corner counted as a joint only at a piece's ends (campaign 1803, case
-    /// 17213: a random profile against the bottle, reported overlapping at 1.27e-6 apart).
+    /// polyline a sagitta above that distance, so the side comes from the closest point.) The
+    /// tangent of the span after the corner (pointing along the top edge) put it inside, since
+    /// the corner counted as a joint only at a piece's ends (campaign 1803, case 17213: a
+    /// random profile against the bottle, reported overlapping at 1.27e-6 apart).
     #[test]
     fn corner_inside_a_piece_gives_no_side_from_its_tangent() {
         let profile = revdist::profile_file::from_toml_str(
