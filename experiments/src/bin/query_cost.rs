@@ -4,15 +4,21 @@
 //! and in exact leaf solves (the rest is node bounds, the queue and solid semantics).
 //!
 //! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]
-//! [--repeat K] [--closed-form on|off] [--cold]` (`off`: balls and solid tori go through the
+//! [--repeat K] [--closed-form on|off] [--cold] [--best-first]` (`off`: balls and solid tori go through the
 //! traversal too; `--cold`: before each timed query, write a buffer of [`EVICT_BYTES`] so that
 //! the trees and the code come from memory, as when queries alternate with other work, e.g.
 //! `fcl_bench`'s FCL queries).
+//!
+//! `--best-first`: each timed query is warm-started ([`revdist::query::QueryCache`]) from
+//! the best leaf pair of an untimed query on the same pose, i.e. a search that knows where
+//! the minimum is before it starts. What such a query still spends is the proof: the node
+//! pairs above that leaf pair whose keys are below the distance, and the leaf pairs near it
+//! (the floor of the search order, issue 11).
 
 use experiments::poses::{log_uniform, pose_at_gap};
 use experiments::SplitMix;
 use revdist::models;
-use revdist::query::{distance, QueryOptions};
+use revdist::query::{distance, distance_cached, QueryCache, QueryOptions};
 use revdist::solid::Solid;
 use std::sync::Arc;
 use std::time::Instant;
@@ -62,6 +68,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut repeat = 1usize;
     let mut closed_form = true;
     let mut cold = false;
+    let mut best_first = false;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -72,6 +79,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             "--repeat" => repeat = args[i + 1].parse()?,
             "--cold" => {
                 cold = true;
+                i += 1;
+                continue;
+            }
+            "--best-first" => {
+                best_first = true;
                 i += 1;
                 continue;
             }
@@ -135,8 +147,12 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 if cold {
                     evict(&mut evict_buf);
                 }
+                let mut cache = QueryCache::default();
+                if best_first {
+                    distance_cached(&sa, b, &opts, &mut cache);
+                }
                 let t0 = Instant::now();
-                let d = distance(&sa, b, &opts);
+                let d = distance_cached(&sa, b, &opts, &mut cache);
                 times.push(t0.elapsed().as_secs_f64() * 1e6);
                 np += d.stats.node_pairs as f64;
                 bt += d.stats.bound_tests as f64;
