@@ -768,7 +768,7 @@ fn triangle_feature(p: &[Vector3<f64>; 4], a: usize, b: usize, c: usize) -> Feat
         return Feature::edge(b, c, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
     }
     let sum = va + vb + vc;
-    if !(sum > 0.0) || !sum.is_finite() {
+    if !sum.is_finite() || sum <= 0.0 {
         // Degenerate: the nearest of the three edges.
         return [
             segment_feature(p, a, b),
