@@ -12,8 +12,10 @@
 //! Poses that aim at a gap place B along a random direction and solve for the translation
 //! with the oracle's quick mode: Newton steps with the witness slope from the far side,
 //! secant or bisection once the target is passed (a touching target never accepts a realised
-//! 0, which would be a crossing). Every answer is checked by [`crate::oracle::check`];
-//! failures get a reproducer: the random profiles as TOML files in the output directory and
+//! 0, which would be a crossing). Every answer is checked by [`crate::oracle::check`], and
+//! so is a second answer for the same pose warm-started from a nearby pose's best leaf pair
+//! (`warm_answer`, the frame coherence of motion sequences; its violations are marked
+//! "warm start"); failures get a reproducer: the random profiles as TOML files in the output directory and
 //! a JSON line for `revdist distance --batch` (also written to `failures.jsonl` there).
 //! Panics inside the query are caught and reported with their location.
 
@@ -22,7 +24,7 @@ use crate::oracle::{OracleResult, PlanarIndex};
 use crate::random_profiles::{random_profile, to_toml, SplitMix64};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
-use revdist::query::{distance, Distance, QueryOptions, Tolerance};
+use revdist::query::{distance, distance_cached, Distance, QueryCache, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -957,6 +959,39 @@ impl TreeCache {
     }
 }
 
+/// The pose a case's warm-started query is primed from, as the frame before it in a
+/// motion: B moved by a small deterministic step (0.5% of the configuration scale along a
+/// fixed direction, 0.03 rad about a fixed axis), which usually changes the best leaf pair
+/// near contact but not by much.
+fn warm_prime_pose(pose: &Isometry3<f64>) -> Isometry3<f64> {
+    let scale = 1.0 + pose.translation.vector.norm();
+    let step = Vector3::new(0.6, -0.48, 0.64) * (0.005 * scale);
+    let turn = UnitQuaternion::from_scaled_axis(Vector3::new(0.02, 0.01, -0.02));
+    Isometry3::from_parts(
+        Translation3::from(pose.translation.vector + step),
+        turn * pose.rotation,
+    )
+}
+
+/// The case's query warm-started ([`distance_cached`]) from the best leaf pair of a query
+/// at [`warm_prime_pose`] (`sb` unposed): frame coherence, the start motion sequences use.
+fn warm_answer(sa: &Solid, sb: &Solid, pose: &Isometry3<f64>, qopts: &QueryOptions) -> Distance {
+    let mut cache = QueryCache::default();
+    distance_cached(sa, &sb.with_pose(warm_prime_pose(pose)), qopts, &mut cache);
+    distance_cached(sa, &sb.with_pose(*pose), qopts, &mut cache)
+}
+
+/// The violations of a warm-started answer, marked as such.
+fn warm_violations(inp: &CheckInput<'_>, warm: &Distance) -> Vec<oracle::Violation> {
+    check(&CheckInput { d: warm, ..*inp })
+        .into_iter()
+        .map(|v| oracle::Violation {
+            detail: format!("warm start: {}", v.detail),
+            ..v
+        })
+        .collect()
+}
+
 /// Runs one case: tree, query, oracle, checks.
 fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
     let mut res = CaseResult {
@@ -992,6 +1027,7 @@ fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
         }
     };
     let pose_b = case.pose.isometry();
+    let unposed_b = sb.clone();
     let sb = sb.with_pose(pose_b);
     let t0 = Instant::now();
     let qopts = QueryOptions {
@@ -1043,6 +1079,13 @@ fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
         b: ib,
     };
     res.violations = check(&inp);
+    let warm = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        warm_answer(&sa, &unposed_b, &pose_b, &qopts)
+    }));
+    match warm {
+        Ok(w) => res.violations.extend(warm_violations(&inp, &w)),
+        Err(e) => res.panic = Some(format!("warm start: {}", panic_message(e.as_ref()))),
+    }
     res.answer = Some(d);
     res.oracle = Some(o);
     res
@@ -1525,9 +1568,8 @@ pub fn single(
     String,
 > {
     let sa = Solid::from_profile(Arc::new(a.clone()), eps).map_err(|e| e.to_string())?;
-    let sb = Solid::from_profile(Arc::new(b.clone()), eps)
-        .map_err(|e| e.to_string())?
-        .with_pose(pose.isometry());
+    let unposed_b = Solid::from_profile(Arc::new(b.clone()), eps).map_err(|e| e.to_string())?;
+    let sb = unposed_b.with_pose(pose.isometry());
     let qopts = QueryOptions {
         tolerance: query_tolerance(tolerance),
         refine,
@@ -1548,7 +1590,7 @@ pub fn single(
         o.lower = o.lower.min(h);
     }
     let to = t1.elapsed();
-    let v = check(&CheckInput {
+    let inp = CheckInput {
         d: &d,
         pose_a: &Isometry3::identity(),
         pose_b: &iso,
@@ -1560,6 +1602,11 @@ pub fn single(
         oracle: &o,
         a: &ia,
         b: &ib,
-    });
+    };
+    let mut v = check(&inp);
+    v.extend(warm_violations(
+        &inp,
+        &warm_answer(&sa, &unposed_b, &iso, &qopts),
+    ));
     Ok((d, o, v, tq, to))
 }
