@@ -92,7 +92,8 @@ pub struct Distance {
 }
 
 /// Frame coherence for sequences of queries on the same pair: the best leaf pair of the
-/// last query is measured first, which gives a tight upper bound before the traversal.
+/// last query gives the next query its first upper bound (a realised pair of that leaf
+/// pair, instead of the one a dive along bounding spheres reaches).
 #[derive(Debug, Clone, Default)]
 pub struct QueryCache {
     last_pair: Option<(u32, u32)>,

@@ -353,9 +353,10 @@ pub fn traverse(
     // bounds first, without a level (nothing pruned, every patch pair realised); it now gets
     // the same cheap upper bound as the dive's and is bounded when the traversal reaches
     // it. Measured with the best leaf pair of the same pose as the warm pair (`query_cost
-    // --best-first --poses 150 --eps 1e-4`, two alternating runs): medians pawn-pawn 16.9
-    // -> 12.8 us, pawn-cup 28.3 -> 20.8, cup-bottle 42.2 -> 23.6, table-lightmill 17.4 ->
-    // 11.5; the motion experiment's blocked means at eps 1e-4 drop 20-50%.
+    // --best-first --poses 150 --eps 1e-4`, best of three alternating runs): medians
+    // pawn-pawn 19.3 -> 15.6 us, pawn-cup 30.9 -> 24.1, cup-bottle 48.7 -> 27.1,
+    // table-lightmill 19.1 -> 13.1 (cold: 19.3, 28.9, 32.9, 16.6: the old warm start was
+    // slower than none); the motion experiment's blocked means at eps 1e-4 drop 20-50%.
     let first = match warm {
         Some((a, b)) if is_leaf_pair(ta, tb, a, b) => (a, b),
         _ => dive(ta, tb, &mut stats, |da, db| sphere_bound(da, db, pos_ab)),
