@@ -62,6 +62,28 @@
 //!   ([`leaf::HULL_PRECISION_SHARE`]): the tori's near points on the cup's waist started
 //!   realised pairs far from the minimum (cup-bottle 43 -> 37 us at eps 1e-4).
 //!
+//! **The search's floor.** A query that starts from the best leaf pair of its own pose
+//! (`query_cost --best-first`: the warm start of [`distance_cached`] primed by an untimed
+//! query on every pose first) knows where the minimum is before it starts; what it still
+//! spends is the proof. At eps 1e-4 (best of three alternating runs of 150 poses) its
+//! medians are pawn-pawn 15.4, pawn-cup 24.0, cup-bottle 27.2, table-lightmill 13.1 us
+//! against 19.3, 28.9, 32.9, 16.6 cold: about a fifth of a cold query is its search order
+//! (the dive's first pair is a median 2.5-4.5 times the distance away), four fifths are the
+//! proof. The proof pops as many node pairs (18-26: every node pair above the minimum's
+//! leaf pair has a key below the distance, so the traversal must split it) and bounds 2-3
+//! leaf pairs near the minimum (one holds it, the others are pruned by their stage-1
+//! bounds). So the node keys and stage-1 bounds above are what a query costs, whatever it
+//! knows. Two ways to find the best pair sooner did not pay for themselves: alternating
+//! nearest points between the two surfaces from the dive's pair (each a planar
+//! nearest-point search down one tree, about 0.1 us; four round trips brought the median
+//! first upper bound within 0.5% of the distance on pawn-pawn, but a quarter of the poses
+//! stayed in a local minimum 50% away, and the medians did not move), and a dive along the
+//! one-step hull bound instead of the sphere bound (first pairs 6-70% away instead of
+//! 150-350%, medians within noise). Priming matters when measuring this: the same query
+//! run just before the timed one made cold medians 15-25% faster by itself (the pose's code
+//! path and tree nodes stay in the caches and branch predictors), so `--best-first` primes
+//! all poses before the timed loop.
+//!
 //! **Cold caches.** The times above are warm: the same query loop keeps the trees and the
 //! code in cache. Run after unrelated work, a query also fetches both from memory:
 //! `query_cost --cold` (64 MB written before each query) gives medians of 43-58 us against
@@ -105,7 +127,12 @@
 //! 10-20 hull keys and nearly all of them are for pairs it expands anyway); starting a node
 //! pair's hull iteration from the direction that gave its parent's bound (with one support
 //! step over spirals this pins every upper pair to the root's direction: pawn-pawn node
-//! pairs 18 -> 25; inside spirals only: same counters, same time).
+//! pairs 18 -> 25; inside spirals only: same counters, same time); a Nesterov-accelerated
+//! direction in the hull iteration (Montaut et al. 2022: on these hulls of circles it took
+//! 2-7% more support points); skipping the node torus bound once the hulls are apart, or
+//! always (same counters, -2 to -3.5%, within noise); each patch's disk kept in the tree
+//! instead of recomputed (no measurable change, 50% more patch memory); fat LTO with one
+//! codegen unit (-2.5%).
 //!
 //! # Layout
 //!
