@@ -206,3 +206,67 @@ fn refinement_is_accurate_below_eps() {
     }
     assert!(checked >= 3, "only {checked} separated cases");
 }
+
+/// A warm start only chooses the traversal's first leaf pair: from the best leaf pair of a
+/// nearby pose, from a pair that is not a leaf pair, from indices outside the trees, or
+/// from none, the surface bounds all hold the reference distance, and the invalid starts
+/// give exactly the cold traversal (both dive).
+#[test]
+fn warm_starts_only_choose_the_first_leaf_pair() {
+    use revdist::query::bounds::BoundKind;
+    use revdist::query::traverse::{traverse, Budget, TraversalOptions};
+    let vase = Solid::from_profile(Arc::new(vase()), 1e-4).unwrap();
+    let ring = Solid::from_profile(Arc::new(ring()), 1e-4).unwrap();
+    let (ta, tb) = (&vase.tree, &ring.tree);
+    let opts = TraversalOptions {
+        tolerance: ta.target_eps + tb.target_eps,
+        budget: Budget::default(),
+        bound: BoundKind::Torus,
+    };
+    let mut previous = None;
+    for k in 0..12 {
+        let s = k as f64 * 0.025;
+        let b = ring.with_pose(pose(
+            Vector3::new(1.2 - s, 0.1 * s, 0.4 + s),
+            UnitQuaternion::from_scaled_axis(Vector3::new(s, 0.3, 0.0)),
+        ));
+        let pos = vase.relative_pose(&b);
+        let truth = reference(
+            vase.profile.as_deref().unwrap(),
+            ring.profile.as_deref().unwrap(),
+            &pos,
+        )
+        .distance;
+        let cold = traverse(ta, tb, &pos, &opts, None);
+        for (what, warm) in [
+            ("previous best", previous),
+            ("roots", Some((ta.root, tb.root))),
+            ("outside", Some((u32::MAX, u32::MAX))),
+        ] {
+            let w = traverse(ta, tb, &pos, &opts, warm);
+            // The surface bounds carry the trees' eps; the reference is the exact solids'.
+            assert!(
+                w.lower <= truth + 1e-9 && truth <= w.upper + 1e-9,
+                "step {k} {what}: {truth} outside [{}, {}]",
+                w.lower,
+                w.upper
+            );
+            if what != "previous best" {
+                // Everything but the timings in the counters.
+                let same = |x: &revdist::query::traverse::SurfaceBounds| {
+                    (
+                        x.lower,
+                        x.upper,
+                        x.approx,
+                        x.point_a,
+                        x.point_b,
+                        x.best_pair,
+                    )
+                };
+                assert_eq!(same(&w), same(&cold), "step {k} {what}");
+                assert_eq!(w.stats.node_pairs, cold.stats.node_pairs, "step {k} {what}");
+            }
+        }
+        previous = cold.best_pair;
+    }
+}
