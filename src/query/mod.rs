@@ -142,7 +142,8 @@
 //!   independent queries on all cores;
 //! * leaf pairs: [`leaf`] (the two stages), [`patch_bound`] (stage-1 bounds: patch/patch via
 //!   the arcs' tori, torus/cone via the circle/segment distance), [`mod@patch_distance`] (the
-//!   exact kernel), with the circle/patch kernels [`planar`] (coaxial case), [`sweep`]
+//!   exact kernel: a driver and one file per case: interior normals of tori and of cones,
+//!   boundary parallel/patch, parallel/parallel, crossings), with the circle/patch kernels [`planar`] (coaxial case), [`sweep`]
 //!   (critical points along a circle), [`binormal_kernel`], [`line_field`], [`gauss`], and
 //!   [`certify`] (subdivision lower bounds where a kernel had to sample);
 //! * node bounds [`bounds`] and convex-hull bounds [`hull`] on the query tree [`tree`];
