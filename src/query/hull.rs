@@ -626,22 +626,18 @@ impl Simplex {
             3 => triangle_feature(&self.points, 2, 0, 1),
             _ => self.tetrahedron_feature(),
         };
-        let mut v = Vector3::zeros();
-        for k in 0..f.len {
-            v += self.points[f.index[k] as usize] * f.weight[k];
-        }
         if f.len == 4 {
             // The origin is inside: the caller stops on `|v| = 0`.
             return Vector3::zeros();
         }
-        // Keep the feature's vertices (their order is free: indices increase, so copying
-        // down never overwrites a vertex still to be read).
+        let v = f.point(&self.points);
+        // Keep the feature's vertices in insertion order, the newest last: with increasing
+        // indices, copying down in place never overwrites a vertex still to be read.
         f.sort();
-        let (points, pairs) = (self.points, self.pairs);
         for k in 0..f.len {
             let i = f.index[k] as usize;
-            self.points[k] = points[i];
-            self.pairs[k] = pairs[i];
+            self.points[k] = self.points[i];
+            self.pairs[k] = self.pairs[i];
             self.weights[k] = f.weight[k];
         }
         self.len = f.len;
@@ -857,12 +853,12 @@ mod tests {
 
     /// The distance from the origin to the simplex `p` by brute force: every face's
     /// affine projection whose barycentric weights are all non-negative (the whole
-    /// tetrahedron excluded), skipping the face `skip` (a vertex bit mask).
-    fn closest_by_faces(p: &[Vector3<f64>], skip: u32) -> f64 {
+    /// tetrahedron excluded).
+    fn closest_by_faces(p: &[Vector3<f64>]) -> f64 {
         let n = p.len();
         let mut best = f64::INFINITY;
         for mask in 1u32..(1 << n) {
-            if mask == skip || mask == 0b1111 {
+            if mask == 0b1111 {
                 continue;
             }
             let idx: Vec<usize> = (0..n).filter(|i| mask & (1 << i) != 0).collect();
@@ -905,8 +901,8 @@ mod tests {
                 assert!(simplex.push(*w, pair), "case {case}: vertex {i}");
             }
             let v = simplex.closest_to_origin();
-            let expected = closest_by_faces(&pts, 0);
-            if n == 4 && closest_by_faces(&pts[..3], 0) <= expected + 1e-9 {
+            let expected = closest_by_faces(&pts);
+            if n == 4 && closest_by_faces(&pts[..3]) <= expected + 1e-9 {
                 // The face opposite the newest vertex (or an edge of it) holds the nearest
                 // point: GJK never builds such a tetrahedron (the new vertex beats the old
                 // triangle's nearest point).

@@ -4,10 +4,10 @@
 //! and in exact leaf solves (the rest is node bounds, the queue and solid semantics).
 //!
 //! Usage: `query_cost [--poses N] [--eps E]... [--pairs a-b,...] [--tolerance T|trees]
-//! [--repeat K] [--closed-form on|off] [--cold] [--best-first]` (`off`: balls and solid tori go through the
-//! traversal too; `--cold`: before each timed query, write a buffer of [`EVICT_BYTES`] so that
-//! the trees and the code come from memory, as when queries alternate with other work, e.g.
-//! `fcl_bench`'s FCL queries).
+//! [--repeat K] [--closed-form on|off] [--cold] [--best-first]` (`off`: balls and solid tori
+//! go through the traversal too; `--cold`: before each timed query, write a buffer of
+//! [`EVICT_BYTES`] so that the trees and the code come from memory, as when queries alternate
+//! with other work, e.g. `fcl_bench`'s FCL queries).
 //!
 //! `--best-first`: each timed query is warm-started ([`revdist::query::QueryCache`]) from
 //! the best leaf pair of an untimed query on the same pose (all of them run before the
