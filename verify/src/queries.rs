@@ -14,9 +14,10 @@
 //! secant or bisection once the target is passed (a touching target never accepts a realised
 //! 0, which would be a crossing). Every answer is checked by [`crate::oracle::check`], and
 //! so is a second answer for the same pose warm-started from a nearby pose's best leaf pair
-//! (`warm_answer`, the frame coherence of motion sequences; its violations are marked
-//! "warm start"); failures get a reproducer: the random profiles as TOML files in the output directory and
-//! a JSON line for `revdist distance --batch` (also written to `failures.jsonl` there).
+//! (`warm_violations`, the frame coherence of motion sequences; its violations are marked
+//! "warm start"); failures get a reproducer: the random profiles as TOML files in the output
+//! directory and a JSON line for `revdist distance --batch` (also written to
+//! `failures.jsonl` there).
 //! Panics inside the query are caught and reported with their location.
 
 use crate::oracle::{self, check, refine_hint, surface_distance, Check, CheckInput, OracleOptions};
@@ -973,17 +974,25 @@ fn warm_prime_pose(pose: &Isometry3<f64>) -> Isometry3<f64> {
     )
 }
 
-/// The case's query warm-started ([`distance_cached`]) from the best leaf pair of a query
-/// at [`warm_prime_pose`] (`sb` unposed): frame coherence, the start motion sequences use.
-fn warm_answer(sa: &Solid, sb: &Solid, pose: &Isometry3<f64>, qopts: &QueryOptions) -> Distance {
+/// The violations (marked "warm start") of the case's query between `sa` and the posed `sb`
+/// warm-started ([`distance_cached`]) from the best leaf pair of a query with `sb` at
+/// [`warm_prime_pose`]: frame coherence, the start motion sequences use. `inp` holds the
+/// case's checks, with the cold answer.
+fn warm_violations(
+    inp: &CheckInput<'_>,
+    sa: &Solid,
+    sb: &Solid,
+    qopts: &QueryOptions,
+) -> Vec<oracle::Violation> {
     let mut cache = QueryCache::default();
-    distance_cached(sa, &sb.with_pose(warm_prime_pose(pose)), qopts, &mut cache);
-    distance_cached(sa, &sb.with_pose(*pose), qopts, &mut cache)
-}
-
-/// The violations of a warm-started answer, marked as such.
-fn warm_violations(inp: &CheckInput<'_>, warm: &Distance) -> Vec<oracle::Violation> {
-    check(&CheckInput { d: warm, ..*inp })
+    distance_cached(
+        sa,
+        &sb.with_pose(warm_prime_pose(&sb.pose)),
+        qopts,
+        &mut cache,
+    );
+    let warm = distance_cached(sa, sb, qopts, &mut cache);
+    check(&CheckInput { d: &warm, ..*inp })
         .into_iter()
         .map(|v| oracle::Violation {
             detail: format!("warm start: {}", v.detail),
@@ -1027,7 +1036,6 @@ fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
         }
     };
     let pose_b = case.pose.isometry();
-    let unposed_b = sb.clone();
     let sb = sb.with_pose(pose_b);
     let t0 = Instant::now();
     let qopts = QueryOptions {
@@ -1080,10 +1088,10 @@ fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
     };
     res.violations = check(&inp);
     let warm = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        warm_answer(&sa, &unposed_b, &pose_b, &qopts)
+        warm_violations(&inp, &sa, &sb, &qopts)
     }));
     match warm {
-        Ok(w) => res.violations.extend(warm_violations(&inp, &w)),
+        Ok(v) => res.violations.extend(v),
         Err(e) => res.panic = Some(format!("warm start: {}", panic_message(e.as_ref()))),
     }
     res.answer = Some(d);
@@ -1568,8 +1576,9 @@ pub fn single(
     String,
 > {
     let sa = Solid::from_profile(Arc::new(a.clone()), eps).map_err(|e| e.to_string())?;
-    let unposed_b = Solid::from_profile(Arc::new(b.clone()), eps).map_err(|e| e.to_string())?;
-    let sb = unposed_b.with_pose(pose.isometry());
+    let sb = Solid::from_profile(Arc::new(b.clone()), eps)
+        .map_err(|e| e.to_string())?
+        .with_pose(pose.isometry());
     let qopts = QueryOptions {
         tolerance: query_tolerance(tolerance),
         refine,
@@ -1604,9 +1613,6 @@ pub fn single(
         b: &ib,
     };
     let mut v = check(&inp);
-    v.extend(warm_violations(
-        &inp,
-        &warm_answer(&sa, &unposed_b, &iso, &qopts),
-    ));
+    v.extend(warm_violations(&inp, &sa, &sb, &qopts));
     Ok((d, o, v, tq, to))
 }
