@@ -1,6 +1,6 @@
-//! Case (d) of [`super`]: where a boundary parallel crosses the extended surface of the
-//! other patch (the meridian scan of [`implicit_halves`]' level sets), and the exact point-
-//! to-patch distance there.
+//! Case (d) of [`super`]: crossings of the two patches, found as sign changes of the other
+//! patch's implicit halves ([`implicit_halves`]) along one patch's meridians, each point
+//! measured with the exact point-to-patch distance (zero at a crossing).
 
 use super::*;
 
