@@ -12,6 +12,7 @@
 
 pub mod biarc;
 pub mod circle;
+pub mod limits;
 pub mod models;
 pub mod num;
 pub mod nurbs;

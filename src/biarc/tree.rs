@@ -65,7 +65,7 @@ pub const MAX_DEPTH: u32 = 60;
 
 /// Smallest accepted `eps`, relative to the profile size (bounding-box diagonal): below it the
 /// floating-point slack of the bounds (~1e-14 of the coordinates) would dominate.
-pub const MIN_EPS_REL: f64 = 1e-12;
+pub use crate::limits::MIN_EPS_REL;
 
 /// Spirals of consecutive spans merge only when their tangents at the knot agree to this
 /// angle (radians): C1 / G1 knots of B-splines agree to rounding (~1e-16), creases by far more.
