@@ -23,6 +23,18 @@
 /// Largest absolute value of a profile coordinate (rho or z).
 pub const MAX_COORDINATE: f64 = 1e100;
 
+/// Largest absolute value of a knot.
+pub const MAX_KNOT: f64 = 1e100;
+
+/// Shortest non-empty knot span. A curve's third derivative grows as its coordinates times
+/// its weight ratio over the span cubed: with [`MAX_COORDINATE`] and [`MAX_WEIGHT_RATIO`],
+/// spans of `1e-12` keep it below `1e150`, whose square is still finite.
+pub const MIN_KNOT_SPAN: f64 = 1e-12;
+
+/// Smallest size (bounding-box diagonal) of a profile: squared lengths of its features stay
+/// normal floating-point numbers.
+pub const MIN_PROFILE_SIZE: f64 = 1e-100;
+
 /// Largest ratio between the largest and the smallest weight of a rational piece.
 pub const MAX_WEIGHT_RATIO: f64 = 1e12;
 
@@ -88,7 +100,13 @@ pub fn check_translation(field: &str, t: [f64; 3]) -> Result<[f64; 3], RangeErro
             });
         }
     }
-    let length = t.iter().map(|v| v * v).sum::<f64>().sqrt();
+    // Scaled by the largest component, so that no square overflows.
+    let largest = t.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let length = if largest > 0.0 {
+        largest * t.iter().map(|v| (v / largest).powi(2)).sum::<f64>().sqrt()
+    } else {
+        0.0
+    };
     check_magnitude(field, length, MAX_TRANSLATION)?;
     Ok(t)
 }
@@ -120,6 +138,11 @@ mod tests {
         assert!(e.to_string().contains("pose_b.translation.y is NaN"), "{e}");
         assert!(check_translation("t", [1e100, 1e100, 0.0]).is_err());
         assert!(check_translation("t", [7e99, 7e99, 0.0]).is_ok());
+        let e = check_translation("t", [1e200, 0.0, 0.0]).unwrap_err();
+        assert!(
+            matches!(e, RangeError::TooLarge { value, .. } if value == 1e200),
+            "{e}"
+        );
         assert!(check_length("amplitude", -1.0).is_err());
         assert_eq!(check_length("amplitude", 0.0), Ok(0.0));
     }

@@ -7,6 +7,9 @@
 //! `(w rho, w z, w)` with the B-spline basis (de Boor / Cox recurrences), so circles and arcs
 //! written as rational quadratics are exact.
 
+use crate::limits::{
+    check_coordinate, check_magnitude, RangeError, MAX_KNOT, MAX_WEIGHT_RATIO, MIN_KNOT_SPAN,
+};
 use nalgebra::{Point2, Vector2};
 
 /// Highest derivative order [`NurbsCurve::derivatives`] returns (curvature and its derivative
@@ -65,6 +68,28 @@ pub enum CurveError {
     /// A knot or coordinate is NaN or infinite.
     #[error("{what} {index} is not finite")]
     NonFinite { what: &'static str, index: usize },
+    /// A coordinate, knot span or weight ratio outside the representable range
+    /// ([`crate::limits`]).
+    #[error(transparent)]
+    Range(#[from] RangeError),
+    /// The weights of a rational curve differ by more than [`MAX_WEIGHT_RATIO`].
+    #[error("weights range from {min:e} (weight {min_index}) to {max:e} (weight {max_index}): ratio {ratio:e} is above {MAX_WEIGHT_RATIO:e}")]
+    WeightRatio {
+        min: f64,
+        min_index: usize,
+        max: f64,
+        max_index: usize,
+        ratio: f64,
+    },
+    /// A non-empty knot span shorter than [`MIN_KNOT_SPAN`]: the curve's derivatives, which
+    /// grow as the inverse span cubed, would overflow.
+    #[error("knot span [{start:e}, {end:e}] (knots {index} and {next}) is shorter than {MIN_KNOT_SPAN:e}: rescale the knot vector")]
+    KnotSpanTooShort {
+        index: usize,
+        next: usize,
+        start: f64,
+        end: f64,
+    },
     /// A split parameter outside the open domain.
     #[error("parameter {t} is not inside the open domain ({start}, {end})")]
     ParameterOutOfRange { t: f64, start: f64, end: f64 },
@@ -192,7 +217,22 @@ impl NurbsCurve {
                 index,
             });
         }
+        for (index, p) in points.iter().enumerate() {
+            check_coordinate(&format!("control point {index}, rho"), p.x)?;
+            check_coordinate(&format!("control point {index}, z"), p.y)?;
+        }
+        for (index, k) in knots.iter().enumerate() {
+            check_magnitude(&format!("knot {index}"), *k, MAX_KNOT)?;
+        }
         for i in 1..knots.len() {
+            if knots[i] > knots[i - 1] && knots[i] - knots[i - 1] < MIN_KNOT_SPAN {
+                return Err(CurveError::KnotSpanTooShort {
+                    index: i - 1,
+                    next: i,
+                    start: knots[i - 1],
+                    end: knots[i],
+                });
+            }
             if knots[i] < knots[i - 1] {
                 return Err(CurveError::DecreasingKnots {
                     index: i,
@@ -245,6 +285,19 @@ impl NurbsCurve {
                 return Err(CurveError::NonPositiveWeight {
                     index,
                     value: w[index],
+                });
+            }
+            let by_value = |a: &(usize, &f64), b: &(usize, &f64)| a.1.total_cmp(b.1);
+            let (min_index, &min) = w.iter().enumerate().min_by(by_value).expect("points");
+            let (max_index, &max) = w.iter().enumerate().max_by(by_value).expect("points");
+            let ratio = max / min;
+            if !(ratio <= MAX_WEIGHT_RATIO) {
+                return Err(CurveError::WeightRatio {
+                    min,
+                    min_index,
+                    max,
+                    max_index,
+                    ratio,
                 });
             }
         }
@@ -487,11 +540,13 @@ impl NurbsCurve {
             * h
     }
 
+    /// Adaptive Gauss-Legendre length of `[a, b]`; a non-finite estimate (a speed that
+    /// overflows) ends the recursion at once instead of refining to the depth cap.
     fn adaptive_length(&self, a: f64, b: f64, tol: f64, depth: u32) -> f64 {
         let whole = self.gauss_length(a, b);
         let mid = 0.5 * (a + b);
         let halves = self.gauss_length(a, mid) + self.gauss_length(mid, b);
-        if (whole - halves).abs() <= tol || depth >= MAX_LENGTH_DEPTH {
+        if !halves.is_finite() || (whole - halves).abs() <= tol || depth >= MAX_LENGTH_DEPTH {
             halves
         } else {
             self.adaptive_length(a, mid, 0.5 * tol, depth + 1)

@@ -65,7 +65,7 @@ pub const MAX_DEPTH: u32 = 60;
 
 /// Smallest accepted `eps`, relative to the profile size (bounding-box diagonal): below it the
 /// floating-point slack of the bounds (~1e-14 of the coordinates) would dominate.
-pub use crate::limits::MIN_EPS_REL;
+pub use crate::limits::{MAX_EPS_REL, MIN_EPS_REL};
 
 /// Spirals of consecutive spans merge only when their tangents at the knot agree to this
 /// angle (radians): C1 / G1 knots of B-splines agree to rounding (~1e-16), creases by far more.
@@ -90,6 +90,16 @@ pub enum TreeError {
         eps: f64,
         /// Smallest accepted bound for this profile.
         min: f64,
+    },
+    /// `eps` is so coarse that the approximation would no longer resemble the profile.
+    #[error(
+        "eps = {eps:e} is above {max:e} ({MAX_EPS_REL} of the profile size): too coarse to resemble the solid"
+    )]
+    EpsTooLarge {
+        /// Requested bound.
+        eps: f64,
+        /// Largest accepted bound for this profile.
+        max: f64,
     },
     /// A span of a piece has a degree above [`MAX_SPAN_DEGREE`].
     #[error("piece {piece} has degree {degree}, above the supported {max}")]
@@ -469,6 +479,12 @@ impl BiarcTree {
             return Err(TreeError::EpsTooSmall {
                 eps,
                 min: MIN_EPS_REL * size,
+            });
+        }
+        if eps > MAX_EPS_REL * size {
+            return Err(TreeError::EpsTooLarge {
+                eps,
+                max: MAX_EPS_REL * size,
             });
         }
         self.eps = eps;

@@ -6,11 +6,10 @@
 //! `translation`. Output points are in A's frame.
 
 use std::collections::HashMap;
-use std::io::{BufRead, Write};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
-use rayon::prelude::*;
+use revdist::limits::check_translation;
 use revdist::query::{try_distance, Budget, Distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use serde::{Deserialize, Serialize};
@@ -52,10 +51,17 @@ pub struct Args {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-    /// Batch mode: read JSON lines {"a", "b", "pose_b", "eps"} from this file ("-" for
-    /// stdin) and write one JSON result per line.
+    /// Batch mode: read JSON lines {"a", "b", "pose_b", "eps", "tolerance", "refine"} from
+    /// this file ("-" for stdin) and write exactly one JSON line per input line, in order,
+    /// each with its "line" number; exit status 1 when some line failed.
     #[arg(long, conflicts_with_all = ["a", "b", "pose_b"])]
     batch: Option<String>,
+    /// Batch mode: worker threads (default: every core).
+    #[arg(long, requires = "batch")]
+    threads: Option<usize>,
+    /// Add each query's wall time in microseconds ("time_us") to its output.
+    #[arg(long)]
+    timings: bool,
 }
 
 /// Pose as written in JSON.
@@ -86,7 +92,10 @@ struct Request {
 
 /// One result line.
 #[derive(Debug, Serialize)]
-struct Output {
+pub(crate) struct Output {
+    /// Input line (batch mode, 1-based).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    line: Option<usize>,
     distance: f64,
     lower: f64,
     upper: f64,
@@ -100,11 +109,15 @@ struct Output {
     budget_exhausted: bool,
     /// Answered by the closed form for two balls or solid tori (no traversal).
     closed_form: bool,
+    /// Wall time of the query in microseconds (`--timings`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    time_us: Option<f64>,
 }
 
 impl From<&Distance> for Output {
     fn from(d: &Distance) -> Self {
         Output {
+            line: None,
             distance: d.value,
             lower: d.lower,
             upper: d.upper,
@@ -117,15 +130,14 @@ impl From<&Distance> for Output {
             subdivided_pairs: d.stats.subdivided_pairs,
             budget_exhausted: d.stats.budget_exhausted,
             closed_form: d.stats.closed_forms > 0,
+            time_us: None,
         }
     }
 }
 
 fn pose_from_json(p: &PoseJson) -> Result<Isometry3<f64>, String> {
-    let t = p.translation.unwrap_or([0.0; 3]);
-    if t.iter().any(|v| !v.is_finite()) {
-        return Err(format!("translation {t:?} is not finite"));
-    }
+    let t = check_translation("translation", p.translation.unwrap_or([0.0; 3]))
+        .map_err(|e| e.to_string())?;
     let r = p.rotation.unwrap_or([1.0, 0.0, 0.0, 0.0]);
     let q = Quaternion::new(r[0], r[1], r[2], r[3]);
     let n = q.norm();
@@ -161,23 +173,28 @@ fn check_tolerance(t: f64) -> Result<(), String> {
     }
 }
 
-/// Solids built so far, by (profile spec, eps bits).
+/// A solid built once for every query that names it.
+type SharedSolid = Arc<OnceLock<Result<Solid, String>>>;
+
+/// Solids built so far, by (profile spec, eps bits); shared by the batch's workers, each
+/// shape built once (a second worker asking for it waits for the first).
 #[derive(Default)]
-struct SolidCache {
-    solids: HashMap<(String, u64), Solid>,
+pub(crate) struct SolidCache {
+    solids: Mutex<HashMap<(String, u64), SharedSolid>>,
 }
 
 impl SolidCache {
-    fn get(&mut self, spec: &str, eps: f64) -> Result<Solid, String> {
-        let key = (spec.to_string(), eps.to_bits());
-        if let Some(s) = self.solids.get(&key) {
-            return Ok(s.clone());
-        }
-        let profile = load_profile(spec).map_err(|e| e.to_string())?;
-        let solid = Solid::from_profile(Arc::new(profile), eps)
-            .map_err(|e| format!("'{spec}' at eps {eps}: {e}"))?;
-        self.solids.insert(key, solid.clone());
-        Ok(solid)
+    pub(crate) fn get(&self, spec: &str, eps: f64) -> Result<Solid, String> {
+        let slot = {
+            let mut solids = self.solids.lock().unwrap_or_else(|e| e.into_inner());
+            Arc::clone(solids.entry((spec.to_string(), eps.to_bits())).or_default())
+        };
+        slot.get_or_init(|| {
+            let profile = load_profile(spec).map_err(|e| e.to_string())?;
+            Solid::from_profile(Arc::new(profile), eps)
+                .map_err(|e| format!("'{spec}' at eps {eps}: {e}"))
+        })
+        .clone()
     }
 }
 
@@ -206,7 +223,19 @@ pub fn run(args: Args) -> CmdResult {
         ..QueryOptions::default()
     };
     if let Some(path) = &args.batch {
-        return run_batch(path, args.eps, &opts);
+        check_eps(args.eps)?;
+        let threads = match args.threads {
+            Some(0) => return Err("--threads must be at least 1".into()),
+            Some(n) => n,
+            None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        };
+        let settings = batch::Settings {
+            default_eps: args.eps,
+            opts,
+            timings: args.timings,
+            threads,
+        };
+        return batch::run(path, &settings);
     }
     let (Some(a), Some(b)) = (&args.a, &args.b) else {
         return Err("give two solids A B, or --batch FILE".into());
@@ -216,12 +245,16 @@ pub fn run(args: Args) -> CmdResult {
         Some(s) => parse_pose(s)?,
         None => Isometry3::identity(),
     };
-    let mut cache = SolidCache::default();
+    let cache = SolidCache::default();
     let sa = cache.get(a, args.eps)?;
     let sb = cache.get(b, args.eps)?.with_pose(pose);
+    let started = std::time::Instant::now();
     let d = try_distance(&sa, &sb, &opts).map_err(|e| e.to_string())?;
+    let time_us = started.elapsed().as_secs_f64() * 1e6;
     if args.json {
-        println!("{}", serde_json::to_string(&Output::from(&d))?);
+        let mut out = Output::from(&d);
+        out.time_us = args.timings.then_some(time_us);
+        println!("{}", serde_json::to_string(&out)?);
     } else {
         println!("distance  {:.12e}", d.value);
         println!("interval  [{:.12e}, {:.12e}]", d.lower, d.upper);
@@ -234,6 +267,9 @@ pub fn run(args: Args) -> CmdResult {
             d.point_b.x, d.point_b.y, d.point_b.z
         );
         println!("overlap   {}", d.overlap);
+        if args.timings {
+            println!("time      {time_us:.1} us");
+        }
         if d.stats.closed_forms > 0 {
             println!("stats     closed form (two balls or solid tori: core distance minus radii)");
             return Ok(());
@@ -254,24 +290,16 @@ pub fn run(args: Args) -> CmdResult {
     Ok(())
 }
 
-/// A parsed batch line: the two posed solids and the options of its query.
-struct Prepared {
-    a: Solid,
-    b: Solid,
-    opts: QueryOptions,
-}
-
-/// One batch line to a query ready to run, or a per-line error message.
-fn prepare_line(
+/// A batch line's request to a query ready to run, or a per-line error message.
+pub(crate) fn prepare_request(
     line: &str,
-    default_eps: f64,
-    opts: &QueryOptions,
-    cache: &mut SolidCache,
-) -> Result<Prepared, String> {
+    settings: &batch::Settings,
+    cache: &SolidCache,
+) -> Result<(Solid, Solid, QueryOptions), String> {
     let req: Request = serde_json::from_str(line).map_err(|e| format!("bad request: {e}"))?;
-    let eps = req.eps.unwrap_or(default_eps);
+    let eps = req.eps.unwrap_or(settings.default_eps);
     check_eps(eps)?;
-    let mut opts = *opts;
+    let mut opts = settings.opts;
     if let Some(t) = req.tolerance {
         check_tolerance(t)?;
         opts.tolerance = Tolerance::Absolute(t);
@@ -285,54 +313,24 @@ fn prepare_line(
     };
     let a = cache.get(&req.a, eps)?;
     let b = cache.get(&req.b, eps)?.with_pose(pose);
-    Ok(Prepared { a, b, opts })
+    Ok((a, b, opts))
 }
 
-/// Lines read, prepared (trees built once per shape and eps, in order) and then queried in
-/// parallel per chunk; results are written in input order.
-const BATCH_CHUNK: usize = 1024;
-
-fn run_batch(path: &str, default_eps: f64, opts: &QueryOptions) -> CmdResult {
-    check_eps(default_eps)?;
-    let reader: Box<dyn BufRead> = if path == "-" {
-        Box::new(std::io::stdin().lock())
-    } else {
-        let f = std::fs::File::open(path).map_err(|e| format!("cannot open '{path}': {e}"))?;
-        Box::new(std::io::BufReader::new(f))
-    };
-    let mut cache = SolidCache::default();
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
-    let mut chunk: Vec<(usize, Result<Prepared, String>)> = Vec::with_capacity(BATCH_CHUNK);
-    let mut flush = |chunk: &mut Vec<(usize, Result<Prepared, String>)>| -> CmdResult {
-        let results: Vec<String> = chunk
-            .par_iter()
-            .map(|(i, p)| {
-                let r = p
-                    .as_ref()
-                    .map_err(Clone::clone)
-                    .and_then(|p| try_distance(&p.a, &p.b, &p.opts).map_err(|e| e.to_string()));
-                match r {
-                    Ok(d) => serde_json::to_string(&Output::from(&d)).unwrap_or_default(),
-                    Err(e) => serde_json::json!({ "line": i + 1, "error": e }).to_string(),
-                }
-            })
-            .collect();
-        for text in results {
-            writeln!(out, "{text}")?;
-        }
-        chunk.clear();
-        Ok(())
-    };
-    for (i, line) in reader.lines().enumerate() {
-        let line = line.map_err(|e| format!("reading '{path}': {e}"))?;
-        if line.trim().is_empty() {
-            continue;
-        }
-        chunk.push((i, prepare_line(&line, default_eps, opts, &mut cache)));
-        if chunk.len() >= BATCH_CHUNK {
-            flush(&mut chunk)?;
-        }
-    }
-    flush(&mut chunk)
+/// One batch line's output: its result with its line number, or its error.
+pub(crate) fn answer_line(
+    number: usize,
+    line: Result<&str, String>,
+    settings: &batch::Settings,
+    cache: &SolidCache,
+) -> Result<String, String> {
+    let (a, b, opts) = prepare_request(line?, settings, cache)?;
+    let started = std::time::Instant::now();
+    let d = try_distance(&a, &b, &opts).map_err(|e| e.to_string())?;
+    let time_us = started.elapsed().as_secs_f64() * 1e6;
+    let mut out = Output::from(&d);
+    out.line = Some(number);
+    out.time_us = settings.timings.then_some(time_us);
+    serde_json::to_string(&out).map_err(|e| e.to_string())
 }
+
+pub(crate) mod batch;

@@ -15,6 +15,9 @@ pub fn load_profile(spec: &str) -> Result<Profile, Box<dyn std::error::Error>> {
         Err(ModelError::UnknownModel { .. }) if Path::new(spec).is_file() => {
             read_profile_file(spec)
         }
+        Err(ModelError::UnknownModel { .. }) if Path::new(spec).is_dir() => {
+            Err(format!("'{spec}' is a directory, not a profile file or a built-in model").into())
+        }
         Err(e @ ModelError::UnknownModel { .. }) => {
             Err(format!("{e}; no profile file '{spec}' exists either").into())
         }

@@ -1,5 +1,6 @@
 //! `revdist`: command-line front end. A thin dispatcher: each subcommand lives in its own
-//! file and returns a `Result`; errors are printed as `error: ...` with exit code 2.
+//! file and returns a `Result`; errors are printed as `error: ...` with exit code 2 (1 for a
+//! batch whose lines all ran, some with errors).
 
 use std::process::ExitCode;
 
@@ -60,6 +61,11 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // A batch whose lines ran, some with errors (each on its own output line).
+        Err(e) if e.is::<distance::batch::LinesFailed>() => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(2)

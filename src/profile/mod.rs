@@ -7,6 +7,11 @@
 //! - [`ProfileKind::OpenOnAxis`]: both ends lie on the axis rho = 0, and the region is closed
 //!   by the axis segment between them.
 
+mod simple;
+
+pub use simple::SELF_TOUCH_REL;
+
+use crate::limits::MIN_PROFILE_SIZE;
 use crate::nurbs::{Aabb2, NurbsCurve};
 use nalgebra::Point2;
 
@@ -34,7 +39,7 @@ pub enum ProfileError {
     #[error("a profile needs at least one piece")]
     Empty,
     /// A control point left the half-plane rho >= 0.
-    #[error("piece {piece}, control point {index}: rho = {rho} < 0 (profiles live in rho >= 0)")]
+    #[error("piece {piece}, control point {index}: rho = {rho:e} < 0 (profiles live in rho >= 0)")]
     NegativeRho {
         piece: usize,
         index: usize,
@@ -43,9 +48,26 @@ pub enum ProfileError {
     /// Consecutive pieces do not meet.
     #[error("gap of {gap:e} between the end of piece {piece} and the start of piece {next}")]
     Gap { piece: usize, next: usize, gap: f64 },
-    /// A piece (or the whole profile) has no length.
-    #[error("piece {piece} has zero length")]
-    ZeroLength { piece: usize },
+    /// A piece is a point at the profile's scale.
+    #[error("piece {piece} has length {length:e}, below {ZERO_LENGTH_REL:e} of the profile's size {size:e}: a point, not a curve")]
+    ZeroLength {
+        piece: usize,
+        length: f64,
+        size: f64,
+    },
+    /// The whole profile is too small to be represented.
+    #[error("the profile's size (bounding-box diagonal) {size:e} is below the smallest representable size {MIN_PROFILE_SIZE:e}")]
+    TooSmall { size: f64 },
+    /// The chain crosses, touches or folds back onto itself (or onto the axis segment that
+    /// closes an open profile), within [`SELF_TOUCH_REL`] of its size.
+    #[error("{first} and {second} meet at (rho, z) = ({rho:e}, {z:e}): a profile must not cross, touch or fold back onto itself (tolerance {tolerance:e}, 1e-9 of its size)")]
+    SelfIntersection {
+        first: String,
+        second: String,
+        rho: f64,
+        z: f64,
+        tolerance: f64,
+    },
     /// A closed chain that reaches the axis would give a solid with a pinched, non-manifold
     /// point on the axis.
     #[error("closed profile touches the axis (min rho = {min_rho:e}); a closed profile must stay in rho > 0")]
@@ -69,6 +91,39 @@ impl Profile {
     /// The end points of joined pieces are snapped together and ends within the join tolerance
     /// of the axis are not moved (callers write them exactly); the checks only decide validity.
     pub fn new(name: impl Into<String>, pieces: Vec<NurbsCurve>) -> Result<Self, ProfileError> {
+        let profile = Self::allowing_self_contact(name, pieces)?;
+        let scale = profile.bounding_box().diagonal();
+        let closing_axis = profile.kind == ProfileKind::OpenOnAxis;
+        if let Some(c) = simple::first_crossing(&profile.pieces, closing_axis, scale) {
+            let name = |p: Option<usize>| {
+                p.map_or("the axis segment closing the profile".to_string(), |k| {
+                    format!("piece {k}")
+                })
+            };
+            let (first, second) = if c.first == c.second {
+                (name(c.first), "itself".to_string())
+            } else {
+                (name(c.first), name(c.second))
+            };
+            return Err(ProfileError::SelfIntersection {
+                first,
+                second,
+                rho: c.point.x,
+                z: c.point.y,
+                tolerance: SELF_TOUCH_REL * scale,
+            });
+        }
+        Ok(profile)
+    }
+
+    /// Every check of [`Profile::new`] but the last: the chain may touch, cross or fold back
+    /// onto itself. Such a chain bounds no well-defined solid; this constructor exists for
+    /// robustness tests of the trees and queries on degenerate chains (zero-width fins,
+    /// retraces, near-cusps) drawn by property tests, which must not break the library.
+    pub fn allowing_self_contact(
+        name: impl Into<String>,
+        pieces: Vec<NurbsCurve>,
+    ) -> Result<Self, ProfileError> {
         if pieces.is_empty() {
             return Err(ProfileError::Empty);
         }
@@ -87,11 +142,18 @@ impl Profile {
             .reduce(Aabb2::union)
             .expect("non-empty");
         let scale = bbox.diagonal();
-        let join_tol = JOIN_TOLERANCE_REL * scale.max(f64::MIN_POSITIVE);
+        if !(scale >= MIN_PROFILE_SIZE) {
+            return Err(ProfileError::TooSmall { size: scale });
+        }
+        let join_tol = JOIN_TOLERANCE_REL * scale;
         let zero_length = ZERO_LENGTH_REL * scale;
         for (piece, c) in pieces.iter().enumerate() {
-            if scale == 0.0 || has_zero_length(c, zero_length) {
-                return Err(ProfileError::ZeroLength { piece });
+            if let Some(length) = zero_length_of(c, zero_length) {
+                return Err(ProfileError::ZeroLength {
+                    piece,
+                    length,
+                    size: scale,
+                });
             }
         }
         for piece in 0..pieces.len() - 1 {
@@ -174,10 +236,11 @@ impl Profile {
 /// Number of chords of the cheap lower bound on a piece's length in [`has_zero_length`].
 const LENGTH_PROBE_CHORDS: usize = 16;
 
-/// Whether `curve` is no longer than `threshold`. An inscribed polyline is never longer than
-/// the curve, so a probe polyline longer than `threshold` settles the common case without
-/// quadrature; only near-degenerate pieces pay for the adaptive arc length.
-fn has_zero_length(curve: &NurbsCurve, threshold: f64) -> bool {
+/// The length of `curve` when it is no longer than `threshold`. An inscribed polyline is
+/// never longer than the curve, so a probe polyline longer than `threshold` settles the
+/// common case without quadrature; only near-degenerate pieces pay for the adaptive arc
+/// length.
+fn zero_length_of(curve: &NurbsCurve, threshold: f64) -> Option<f64> {
     let (a, b) = curve.domain();
     let probe: f64 = (0..LENGTH_PROBE_CHORDS)
         .map(|i| {
@@ -186,7 +249,11 @@ fn has_zero_length(curve: &NurbsCurve, threshold: f64) -> bool {
             (curve.eval(t1) - curve.eval(t0)).norm()
         })
         .sum();
-    probe <= threshold && curve.arc_length(threshold) <= threshold
+    if probe > threshold {
+        return None;
+    }
+    let length = curve.arc_length(threshold);
+    (length <= threshold).then_some(length)
 }
 
 #[cfg(test)]
@@ -256,11 +323,11 @@ mod tests {
                     line(p(1., 1.), p(0., 2.))
                 ]
             ),
-            Err(ZeroLength { piece: 1 })
+            Err(ZeroLength { piece: 1, .. })
         ));
         assert!(matches!(
             Profile::new("point", vec![line(p(0., 0.), p(0., 0.))]),
-            Err(ZeroLength { piece: 0 })
+            Err(TooSmall { .. })
         ));
         assert!(matches!(
             Profile::new("open", vec![line(p(0., 0.), p(1., 1.))]),
