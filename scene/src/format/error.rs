@@ -1,5 +1,6 @@
 //! Why a scene file could not be used.
 
+use revdist::limits::RangeError;
 use std::path::PathBuf;
 
 /// A scene file that could not be used: the field and the problem.
@@ -14,6 +15,10 @@ pub enum SceneError {
     Syntax { path: PathBuf, message: String },
     #[error("{field}: {problem}")]
     Field { field: String, problem: String },
+    /// A number outside the range `revdist distance` accepts ([`revdist::limits`]); the
+    /// message names the field.
+    #[error(transparent)]
+    Range(#[from] RangeError),
 }
 
 pub(super) fn field_error(field: impl Into<String>, problem: impl Into<String>) -> SceneError {

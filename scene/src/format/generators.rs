@@ -4,7 +4,7 @@ use super::error::{field_error, SceneError};
 use super::model::{Body, DynamicBody, Effect, Link, MassSpec};
 use super::spec::RingMeshSpec;
 use super::validate_body::torus_shape;
-use super::values::{positive, vec3};
+use super::values::{positive, translation};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 /// The bodies of a ring mesh: a `rows` x `cols` grid of horizontal rings (axis z) with centre
@@ -51,7 +51,7 @@ pub(super) fn ring_mesh_bodies(
         ));
     }
     let centre = match &m.center {
-        Some(c) => vec3(&format!("{f}.center"), c)?,
+        Some(c) => translation(&format!("{f}.center"), c)?,
         None => Vector3::zeros(),
     };
     let twist = m.twist.unwrap_or(0.0);

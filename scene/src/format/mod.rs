@@ -103,6 +103,7 @@
 mod error;
 mod generators;
 mod model;
+mod reach;
 mod spec;
 mod validate;
 mod validate_body;

@@ -6,7 +6,9 @@ use super::generators::ring_mesh_bodies;
 use super::model::{Body, DynamicsSettings, Effect, Measure, Render, Scene};
 use super::spec::{MeasureSpec, SceneSpec, ToleranceSpec};
 use super::validate_body::check_body;
-use super::values::{count_in, positive, vec3};
+use super::values::{count_in, positive, positive_length, translation, vec3};
+use super::reach::check_reach;
+use revdist::limits::{check_magnitude, MAX_EPS_REL, MAX_TRANSLATION};
 use std::path::Path;
 
 pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneError> {
@@ -22,9 +24,6 @@ pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneEr
         return Err(field_error("time_step", "more than 10 million frames"));
     }
     let eps = positive("eps", spec.eps)?;
-    if eps > 0.1 {
-        return Err(field_error("eps", format!("{eps} is coarser than 0.1")));
-    }
     let tolerance = match spec.tolerance {
         None => None,
         Some(ToleranceSpec::Keyword(k)) if k == "trees" => None,
@@ -34,14 +33,16 @@ pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneEr
                 format!("unknown tolerance '{k}' (\"trees\" or a width)"),
             ))
         }
-        Some(ToleranceSpec::Width(w)) if w.is_finite() && w >= 0.0 => Some(w),
+        Some(ToleranceSpec::Width(w)) if w.is_finite() && w >= 0.0 => {
+            Some(check_magnitude("tolerance", w, MAX_TRANSLATION)?)
+        }
         Some(ToleranceSpec::Width(w)) => {
             return Err(field_error("tolerance", format!("must be >= 0, got {w}")))
         }
     };
     let within = match spec.within {
         None => None,
-        Some(w) => Some(positive("within", w)?),
+        Some(w) => Some(positive_length("within", w)?),
     };
     if spec.bodies.is_empty() && spec.ring_meshes.is_empty() {
         return Err(field_error(
@@ -50,6 +51,8 @@ pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneEr
         ));
     }
     let mut bodies: Vec<Body> = Vec::with_capacity(spec.bodies.len());
+    // Where each body was declared, for errors about its motion.
+    let mut origins: Vec<String> = Vec::with_capacity(spec.bodies.len());
     for (i, b) in spec.bodies.iter().enumerate() {
         let body = check_body(i, b, base)?;
         if bodies.iter().any(|o| o.name == body.name) {
@@ -59,6 +62,7 @@ pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneEr
             ));
         }
         bodies.push(body);
+        origins.push(format!("body[{i}] ('{}')", b.name));
     }
     let mut links = Vec::new();
     for (k, m) in spec.ring_meshes.iter().enumerate() {
@@ -71,9 +75,11 @@ pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneEr
                 ));
             }
             bodies.push(body);
+            origins.push(format!("ring_mesh[{k}] ('{}')", m.name));
         }
         links.extend(l);
     }
+    check_eps_against_sizes(eps, &bodies)?;
     let dynamics = check_dynamics(
         &spec.gravity,
         spec.substeps,
@@ -82,6 +88,7 @@ pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneEr
         spec.solver_iterations,
         &bodies,
     )?;
+    check_reach(&bodies, &origins, duration, &dynamics)?;
     let measure = match spec.measure {
         None => Measure::All,
         Some(MeasureSpec::Keyword(k)) if k == "all" => Measure::All,
@@ -126,8 +133,8 @@ pub(super) fn check_scene(spec: SceneSpec, base: &Path) -> Result<Scene, SceneEr
     let render = match spec.render {
         None => None,
         Some(r) => {
-            let eye = vec3("render.eye", &r.eye)?;
-            let target = vec3("render.target", &r.target)?;
+            let eye = translation("render.eye", &r.eye)?;
+            let target = translation("render.target", &r.target)?;
             if (eye - target).norm() == 0.0 {
                 return Err(field_error("render.target", "must differ from render.eye"));
             }
@@ -190,7 +197,7 @@ fn check_dynamics(
     )?;
     let contact_skin = match contact_skin {
         None => None,
-        Some(s) => Some(positive("contact_skin", s)?),
+        Some(s) => Some(positive_length("contact_skin", s)?),
     };
     let friction = match friction {
         None => d.friction,
@@ -231,4 +238,24 @@ fn check_dynamics(
         friction,
         solver_iterations,
     })
+}
+
+/// The scene's eps is at most [`MAX_EPS_REL`] of the largest body's size (its profile's
+/// bounding-box diagonal; M_t's at time 0). Each body's own range (`MIN_EPS_REL` to
+/// `MAX_EPS_REL` of its size) is enforced by the core's tree build when the runner builds it.
+fn check_eps_against_sizes(eps: f64, bodies: &[Body]) -> Result<(), SceneError> {
+    let largest = bodies
+        .iter()
+        .filter_map(|b| crate::runner::shape_profile(b, 0.0).ok())
+        .map(|p| p.bounding_box().diagonal())
+        .reduce(f64::max);
+    match largest {
+        Some(size) if eps > MAX_EPS_REL * size => Err(field_error(
+            "eps",
+            format!(
+                "{eps} is coarser than {MAX_EPS_REL} of the largest body's size ({size:e})"
+            ),
+        )),
+        _ => Ok(()),
+    }
 }

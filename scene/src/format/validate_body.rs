@@ -4,8 +4,9 @@
 use super::error::{field_error, SceneError};
 use super::model::{Body, DynamicBody, Effect, MassSpec, Shape, Track};
 use super::spec::BodySpec;
-use super::values::{pose_of, positive, vec3};
-use nalgebra::{Isometry3, Vector3};
+use super::values::{pose_of, positive, positive_length, vec3};
+use revdist::limits::check_length;
+use nalgebra::Vector3;
 use std::path::Path;
 
 pub(super) fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, SceneError> {
@@ -78,7 +79,7 @@ pub(super) fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, Sc
                     "a morph body is 'deforming' (moving and deforming at once is not supported)",
                 ));
             }
-            Effect::Kinematic(check_track(&f, b, &pose)?)
+            Effect::Kinematic(check_track(&f, b)?)
         }
         "dynamic" => {
             if has_track {
@@ -126,8 +127,8 @@ pub(super) fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, Sc
 }
 
 pub(super) fn torus_shape(field: &str, major: f64, minor: f64) -> Result<Shape, SceneError> {
-    let major = positive(&format!("{field}.major"), major)?;
-    let minor = positive(&format!("{field}.minor"), minor)?;
+    let major = positive_length(&format!("{field}.major"), major)?;
+    let minor = positive_length(&format!("{field}.minor"), minor)?;
     if minor >= major {
         return Err(field_error(
             format!("{field}.minor"),
@@ -164,7 +165,7 @@ fn check_dynamic(f: &str, b: &BodySpec) -> Result<DynamicBody, SceneError> {
     })
 }
 
-fn check_track(f: &str, b: &BodySpec, pose: &Isometry3<f64>) -> Result<Track, SceneError> {
+fn check_track(f: &str, b: &BodySpec) -> Result<Track, SceneError> {
     match (&b.keyframes, &b.random_motion) {
         (Some(keys), None) => {
             if keys.len() < 2 {
@@ -216,20 +217,13 @@ fn check_track(f: &str, b: &BodySpec, pose: &Isometry3<f64>) -> Result<Track, Sc
                 ));
             }
             let rf = format!("{f}.random_motion");
-            let amplitude = m.amplitude;
-            if !(amplitude.is_finite() && amplitude >= 0.0) {
-                return Err(field_error(
-                    format!("{rf}.amplitude"),
-                    "must be finite and >= 0",
-                ));
-            }
+            let amplitude = check_length(&format!("{rf}.amplitude"), m.amplitude)?;
             if !(m.angle.is_finite() && m.angle >= 0.0) {
                 return Err(field_error(
                     format!("{rf}.angle"),
                     "must be finite and >= 0",
                 ));
             }
-            let _ = pose;
             Ok(Track::Random {
                 seed: m.seed,
                 amplitude,

@@ -1,7 +1,10 @@
-//! Checks of single values (counts, numbers, vectors, poses); errors name the field.
+//! Checks of single values (counts, numbers, lengths, vectors, poses); errors name the field.
+//! Translations and lengths are held to the range `revdist distance` accepts
+//! ([`revdist::limits`]).
 
 use super::error::{field_error, SceneError};
 use super::spec::PoseSpec;
+use revdist::limits::{check_magnitude, check_translation, MAX_TRANSLATION};
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 
 /// A count given or defaulted, within `range`; `unit` follows the range in the message
@@ -24,6 +27,7 @@ pub(super) fn count_in(
     }
 }
 
+/// A finite number `> 0`.
 pub(super) fn positive(field: &str, v: f64) -> Result<f64, SceneError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
@@ -35,6 +39,31 @@ pub(super) fn positive(field: &str, v: f64) -> Result<f64, SceneError> {
     }
 }
 
+/// A positive length (a radius, a spacing, a skin) within [`MAX_TRANSLATION`].
+pub(super) fn positive_length(field: &str, v: f64) -> Result<f64, SceneError> {
+    positive(field, v)?;
+    Ok(check_magnitude(field, v, MAX_TRANSLATION)?)
+}
+
+/// A translation (or a position in the scene): 3 finite numbers whose length is within
+/// [`MAX_TRANSLATION`].
+pub(super) fn translation(field: &str, v: &[f64]) -> Result<Vector3<f64>, SceneError> {
+    let [x, y, z] = v[..] else {
+        return Err(field_error(
+            field,
+            format!("expected 3 numbers, got {}", v.len()),
+        ));
+    };
+    // A component beyond the limit is reported as given (the length of the vector could
+    // overflow to inf).
+    for v in [x, y, z].into_iter().filter(|v| v.is_finite()) {
+        check_magnitude(field, v, MAX_TRANSLATION)?;
+    }
+    check_translation(field, [x, y, z])?;
+    Ok(Vector3::new(x, y, z))
+}
+
+/// 3 finite numbers (a velocity, an acceleration).
 pub(super) fn vec3(field: &str, v: &[f64]) -> Result<Vector3<f64>, SceneError> {
     if v.len() != 3 {
         return Err(field_error(
@@ -51,7 +80,7 @@ pub(super) fn vec3(field: &str, v: &[f64]) -> Result<Vector3<f64>, SceneError> {
 /// A pose from its spec; `field` names it in errors.
 pub fn pose_of(field: &str, p: &PoseSpec) -> Result<Isometry3<f64>, SceneError> {
     let t = match &p.translation {
-        Some(v) => vec3(&format!("{field}.translation"), v)?,
+        Some(v) => translation(&format!("{field}.translation"), v)?,
         None => Vector3::zeros(),
     };
     let r = match (&p.quaternion, &p.axis, p.angle) {
@@ -78,9 +107,14 @@ pub fn pose_of(field: &str, p: &PoseSpec) -> Result<Isometry3<f64>, SceneError> 
             }
             UnitQuaternion::from_quaternion(quat)
         }
-        (None, Some(axis), angle) => {
+        (None, Some(_), None) => {
+            return Err(field_error(
+                format!("{field}.angle"),
+                "an axis needs an angle",
+            ));
+        }
+        (None, Some(axis), Some(angle)) => {
             let a = vec3(&format!("{field}.axis"), axis)?;
-            let angle = angle.unwrap_or(0.0);
             if !angle.is_finite() {
                 return Err(field_error(format!("{field}.angle"), "must be finite"));
             }
