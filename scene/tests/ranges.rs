@@ -117,11 +117,10 @@ fn motions_that_would_leave_the_range_are_refused() {
             "body[1] ('keyed').keyframes: the motion can carry the body",
         ),
         (
-            format!(
-                "duration = 10.0\ntime_step = 0.5\neps = 1e-3\n\
-                 [[body]]\nname = \"thrown\"\ntorus = {{ major = 0.1, minor = 0.02 }}\n\
-                 effect = \"dynamic\"\nvelocity = [2e99, 0.0, 0.0]\n"
-            ),
+            "duration = 10.0\ntime_step = 0.5\neps = 1e-3\n\
+             [[body]]\nname = \"thrown\"\ntorus = { major = 0.1, minor = 0.02 }\n\
+             effect = \"dynamic\"\nvelocity = [2e99, 0.0, 0.0]\n"
+                .to_string(),
             "body[0] ('thrown'): the motion can carry the body 2e100 from the origin (free flight",
         ),
     ];
@@ -134,8 +133,12 @@ fn motions_that_would_leave_the_range_are_refused() {
 /// a coarse eps is fine for large bodies and refused for small ones.
 #[test]
 fn eps_is_relative_to_the_largest_body() {
-    let big = "[[body]]\nname = \"big\"\ntorus = { major = 100.0, minor = 20.0 }\neffect = \"static\"\n";
-    parse(&format!("duration = 1.0\ntime_step = 0.5\neps = 1.0\n{big}")).unwrap();
+    let big =
+        "[[body]]\nname = \"big\"\ntorus = { major = 100.0, minor = 20.0 }\neffect = \"static\"\n";
+    parse(&format!(
+        "duration = 1.0\ntime_step = 0.5\neps = 1.0\n{big}"
+    ))
+    .unwrap();
     let e = error_of(&format!(
         "duration = 1.0\ntime_step = 0.5\neps = 1.0\n{}",
         sphere("a", "{}")
@@ -152,7 +155,10 @@ fn eps_is_relative_to_the_largest_body() {
 fn a_valid_scene_still_loads_and_runs() {
     let text = format!(
         "{HEAD}{}{}{}",
-        sphere("a", "{ translation = [0.0, 0.0, 0.0], axis = [0.0, 1.0, 0.0], angle = 0.3 }"),
+        sphere(
+            "a",
+            "{ translation = [0.0, 0.0, 0.0], axis = [0.0, 1.0, 0.0], angle = 0.3 }"
+        ),
         sphere("b", "{ translation = [3.0, 0.0, 0.0] }"),
         wobbly(-3.0, 0.2)
     );

@@ -3,10 +3,10 @@
 //! (perturbed, rigidly moved) circle pairs with rational data.
 
 use crate::companion;
-use crate::random_profiles::SplitMix64;
 use crate::exact_circle::{
     rotation_from_quaternion, rotation_from_rational_quaternion, ExactPair, RVec,
 };
+use crate::random_profiles::SplitMix64;
 use nalgebra::{Point3, Vector3};
 use revdist::circle::{binormals, min_distance, Circle3, Multiplicity};
 use rug::Rational;

@@ -57,7 +57,7 @@ pub(super) fn check_reach(
 ) -> Result<(), SceneError> {
     for (body, origin) in bodies.iter().zip(origins) {
         if let Some((bound, field, how)) = reach(body, duration, dynamics) {
-            if !(bound <= MAX_TRANSLATION) {
+            if bound.is_nan() || bound > MAX_TRANSLATION {
                 return Err(field_error(
                     format!("{origin}{field}"),
                     format!(

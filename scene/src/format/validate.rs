@@ -4,10 +4,10 @@
 use super::error::{field_error, SceneError};
 use super::generators::ring_mesh_bodies;
 use super::model::{Body, DynamicsSettings, Effect, Measure, Render, Scene};
+use super::reach::check_reach;
 use super::spec::{MeasureSpec, SceneSpec, ToleranceSpec};
 use super::validate_body::check_body;
 use super::values::{count_in, positive, positive_length, translation, vec3};
-use super::reach::check_reach;
 use revdist::limits::{check_magnitude, MAX_EPS_REL, MAX_TRANSLATION};
 use std::path::Path;
 
@@ -252,9 +252,7 @@ fn check_eps_against_sizes(eps: f64, bodies: &[Body]) -> Result<(), SceneError> 
     match largest {
         Some(size) if eps > MAX_EPS_REL * size => Err(field_error(
             "eps",
-            format!(
-                "{eps} is coarser than {MAX_EPS_REL} of the largest body's size ({size:e})"
-            ),
+            format!("{eps} is coarser than {MAX_EPS_REL} of the largest body's size ({size:e})"),
         )),
         _ => Ok(()),
     }

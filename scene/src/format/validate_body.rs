@@ -5,8 +5,8 @@ use super::error::{field_error, SceneError};
 use super::model::{Body, DynamicBody, Effect, MassSpec, Shape, Track};
 use super::spec::BodySpec;
 use super::values::{pose_of, positive, positive_length, vec3};
-use revdist::limits::check_length;
 use nalgebra::Vector3;
+use revdist::limits::check_length;
 use std::path::Path;
 
 pub(super) fn check_body(i: usize, b: &BodySpec, base: &Path) -> Result<Body, SceneError> {

@@ -4,8 +4,8 @@
 
 use super::error::{field_error, SceneError};
 use super::spec::PoseSpec;
-use revdist::limits::{check_magnitude, check_translation, MAX_TRANSLATION};
 use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
+use revdist::limits::{check_magnitude, check_translation, MAX_TRANSLATION};
 
 /// A count given or defaulted, within `range`; `unit` follows the range in the message
 /// (e.g. `" pixels"`).

@@ -6,8 +6,8 @@ use super::placement::{
 };
 use super::pool::{pick, Shape};
 use crate::random_profiles::SplitMix64;
-use std::fmt::Write as _;
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use std::fmt::Write as _;
 
 /// How B is placed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -6,8 +6,8 @@
 use super::cases::{Case, PoseSpec};
 use super::pool::Shape;
 use super::run::{panic_message, TreeCache};
-use crate::oracle::{self, check, refine_hint, surface_distance, CheckInput, OracleOptions};
 use crate::oracle::OracleResult;
+use crate::oracle::{self, check, refine_hint, surface_distance, CheckInput, OracleOptions};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
 use revdist::query::{distance, distance_cached, Distance, QueryCache, QueryOptions, Tolerance};

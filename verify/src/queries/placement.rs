@@ -11,7 +11,12 @@ use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 
 /// The quick oracle at a pose: `(signed gap, unsigned surface distance, d gap / d s)` for
 /// B moved along `u` (the slope is `u . n`, `n` the unit vector from A's witness to B's).
-pub(super) fn quick_eval(a: &Shape, b: &Shape, pos: &Isometry3<f64>, u: &Vector3<f64>) -> (f64, f64, f64) {
+pub(super) fn quick_eval(
+    a: &Shape,
+    b: &Shape,
+    pos: &Isometry3<f64>,
+    u: &Vector3<f64>,
+) -> (f64, f64, f64) {
     let r = surface_distance(&a.index, &b.index, pos, &OracleOptions::quick());
     let v = r.point_b - r.point_a;
     let slope = if r.upper > 0.0 {

@@ -136,7 +136,12 @@ pub fn straight_span_profile() -> Profile {
 }
 
 /// Draws a shape index from the pool: built-in, M_t frame or random (of a size class).
-pub(super) fn pick(rng: &mut SplitMix64, shapes: &[Shape], class: Option<&str>, primitives: bool) -> usize {
+pub(super) fn pick(
+    rng: &mut SplitMix64,
+    shapes: &[Shape],
+    class: Option<&str>,
+    primitives: bool,
+) -> usize {
     if primitives {
         let prims: Vec<usize> = (0..shapes.len())
             .filter(|&i| {

@@ -46,7 +46,10 @@ fn numbers<const N: usize>(text: &str, what: &str) -> Result<[f64; N], String> {
 fn parse_line(line: &str) -> Result<FrozenCase, String> {
     let fields: Vec<&str> = line.splitn(5, '|').collect();
     let [names, translation, rotation, eps, note] = fields[..] else {
-        return Err(format!("expected 5 fields separated by '|', got {}", fields.len()));
+        return Err(format!(
+            "expected 5 fields separated by '|', got {}",
+            fields.len()
+        ));
     };
     let names: Vec<&str> = names.split_whitespace().collect();
     let [a, b] = names[..] else {
@@ -169,7 +172,12 @@ mod tests {
         }
         let path = regressions_dir().join("cases.jsonl");
         let found = std::fs::read_to_string(&path).unwrap();
-        assert_eq!(found, expected, "{} should read:\n{expected}", path.display());
+        assert_eq!(
+            found,
+            expected,
+            "{} should read:\n{expected}",
+            path.display()
+        );
     }
 
     #[test]
