@@ -6,8 +6,8 @@
 use super::cases::{Case, PoseSpec};
 use super::pool::Shape;
 use super::run::{panic_message, TreeCache};
-use crate::oracle::OracleResult;
 use crate::oracle::{self, check, refine_hint, surface_distance, CheckInput, OracleOptions};
+use crate::oracle::{OracleResult, PlanarIndex};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
 use revdist::query::{distance, distance_cached, Distance, QueryCache, QueryOptions, Tolerance};
@@ -82,6 +82,32 @@ fn warm_violations(
         .collect()
 }
 
+/// The checks' input for the answer `d` between `sa` (at the identity) and the posed `sb`,
+/// against the oracle's `o` on the planar indices `a` and `b`.
+fn check_input<'a>(
+    d: &'a Distance,
+    sa: &'a Solid,
+    sb: &'a Solid,
+    qopts: &QueryOptions,
+    o: &'a OracleResult,
+    a: &'a PlanarIndex,
+    b: &'a PlanarIndex,
+) -> CheckInput<'a> {
+    CheckInput {
+        d,
+        pose_a: &sa.pose,
+        pose_b: &sb.pose,
+        eps_a: sa.tree.eps,
+        eps_b: sb.tree.eps,
+        tolerance: qopts
+            .tolerance
+            .width(sa.tree.target_eps, sb.tree.target_eps),
+        oracle: o,
+        a,
+        b,
+    }
+}
+
 /// Runs one case: tree, query, oracle, checks.
 pub(super) fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseResult {
     let mut res = CaseResult {
@@ -154,19 +180,7 @@ pub(super) fn run_case(case: Case, shapes: &[Shape], trees: &TreeCache) -> CaseR
         }
     }
     res.oracle_time = t1.elapsed();
-    let inp = CheckInput {
-        d: &d,
-        pose_a: &Isometry3::identity(),
-        pose_b: &pose_b,
-        eps_a: sa.tree.eps,
-        eps_b: sb.tree.eps,
-        tolerance: qopts
-            .tolerance
-            .width(sa.tree.target_eps, sb.tree.target_eps),
-        oracle: &o,
-        a: ia,
-        b: ib,
-    };
+    let inp = check_input(&d, &sa, &sb, &qopts, &o, ia, ib);
     res.violations = check(&inp);
     let warm = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         warm_violations(&inp, &sa, &sb, &qopts)
@@ -227,19 +241,7 @@ pub fn single(
         o.lower = o.lower.min(h);
     }
     let to = t1.elapsed();
-    let inp = CheckInput {
-        d: &d,
-        pose_a: &Isometry3::identity(),
-        pose_b: &iso,
-        eps_a: sa.tree.eps,
-        eps_b: sb.tree.eps,
-        tolerance: qopts
-            .tolerance
-            .width(sa.tree.target_eps, sb.tree.target_eps),
-        oracle: &o,
-        a: &ia,
-        b: &ib,
-    };
+    let inp = check_input(&d, &sa, &sb, &qopts, &o, &ia, &ib);
     let mut v = check(&inp);
     v.extend(warm_violations(&inp, &sa, &sb, &qopts));
     Ok((d, o, v, tq, to))
