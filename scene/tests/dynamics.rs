@@ -353,17 +353,25 @@ fn ring_mesh_example_is_interlocked() {
     assert_eq!(revdist_scene::runner::links_intact(&scene, &poses), 80);
 }
 
+/// Xorshift64 (Marsaglia 2003): the seeded generator of the random throws.
+struct Xorshift64(u64);
+
+impl Xorshift64 {
+    /// Uniform in [-1, 1).
+    fn signed_unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
 /// Random throws: a few rings with random poses, velocities and spins dropped together on
 /// the table; no step may let two solids overlap, and the energy never grows.
 #[test]
 fn random_throws_never_overlap() {
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut rnd = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
+    let mut rng = Xorshift64(0x2545_f491_4f6c_dd1d);
+    let mut rnd = || rng.signed_unit();
     for seed in 0..4 {
         let mut text = String::from(
             "duration = 0.3\ntime_step = 0.02\neps = 1e-4\nsubsteps = 5\n\
@@ -406,13 +414,9 @@ fn stress_random_piles() {
         .unwrap_or(10);
     let mut worst = f64::INFINITY;
     for seed in 0..seeds {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64 ^ (seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng =
+            Xorshift64(0x9e37_79b9_7f4a_7c15u64 ^ (seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1));
+        let mut rnd = || rng.signed_unit();
         let mut text = String::from(
             "duration = 1.0\ntime_step = 0.02\neps = 1e-4\nsubsteps = 10\n\
              [[body]]\nname = \"table\"\nmodel = \"table\"\neffect = \"static\"\n",

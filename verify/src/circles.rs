@@ -6,6 +6,7 @@ use crate::companion;
 use crate::exact_circle::{
     rotation_from_quaternion, rotation_from_rational_quaternion, ExactPair, RVec,
 };
+use crate::random_profiles::SplitMix64;
 use nalgebra::{Point3, Vector3};
 use revdist::circle::{binormals, min_distance, Circle3, Multiplicity};
 use rug::Rational;
@@ -126,38 +127,22 @@ impl Case {
     }
 }
 
-/// SplitMix64.
-pub struct Rng(pub u64);
-impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        let mut g = crate::random_profiles::SplitMix64(self.0);
-        let v = g.next_u64();
-        self.0 = g.0;
-        v
-    }
-    pub fn int(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next_u64() % (hi - lo + 1) as u64) as i64
-    }
-    fn quaternion(&mut self, m: i64) -> [i64; 4] {
-        loop {
-            let q = [
-                self.int(-m, m),
-                self.int(-m, m),
-                self.int(-m, m),
-                self.int(-m, m),
-            ];
-            if q.iter().any(|&x| x != 0) {
-                return q;
-            }
+/// A random integer quaternion with entries in `[-m, m]`, not all zero.
+fn integer_quaternion(rng: &mut SplitMix64, m: i64) -> [i64; 4] {
+    loop {
+        let q = [0, 1, 2, 3].map(|_| rng.signed_int(-m, m));
+        if q.iter().any(|&x| x != 0) {
+            return q;
         }
     }
-    /// A random rigid motion: a rational rotation (integer quaternion with entries up to
-    /// 50) and a translation with components in [-10, 10] (multiples of 1/8).
-    pub fn motion(&mut self) -> ([RVec; 3], RVec) {
-        let rot = rotation_from_quaternion(self.quaternion(50));
-        let t = [0, 1, 2].map(|_| rat(self.int(-80, 80), 8));
-        (rot, t)
-    }
+}
+
+/// A random rigid motion: a rational rotation (integer quaternion with entries up to 50) and a
+/// translation with components in [-10, 10] (multiples of 1/8).
+pub fn random_motion(rng: &mut SplitMix64) -> ([RVec; 3], RVec) {
+    let rot = rotation_from_quaternion(integer_quaternion(rng, 50));
+    let t = [0, 1, 2].map(|_| rat(rng.signed_int(-80, 80), 8));
+    (rot, t)
 }
 
 fn pow10(k: i32) -> Rational {
@@ -182,44 +167,44 @@ impl PowInt for Rational {
 }
 
 /// A random general pair.
-pub fn random_case(rng: &mut Rng) -> Case {
-    let ra = rat(rng.int(8, 128), 64);
-    let c = [0, 1, 2].map(|_| rat(rng.int(-128, 128), 64));
-    let rot = rotation_from_quaternion(rng.quaternion(9));
-    let rb = rat(rng.int(8, 128), 64);
+pub fn random_case(rng: &mut SplitMix64) -> Case {
+    let ra = rat(rng.signed_int(8, 128), 64);
+    let c = [0, 1, 2].map(|_| rat(rng.signed_int(-128, 128), 64));
+    let rot = rotation_from_quaternion(integer_quaternion(rng, 9));
+    let rb = rat(rng.signed_int(8, 128), 64);
     Case {
         family: "random",
         label: String::from("random"),
         ra,
         b: RCircle::rotated(c, &rot, rb),
-        motion: Some(rng.motion()),
+        motion: Some(random_motion(rng)),
         analytic: None,
     }
 }
 
 /// Radius ratios 1e-6..1e6 and distance scales up to 1e6, or near-touching pairs with gaps
 /// 1e-12..1.
-pub fn scaled_case(rng: &mut Rng) -> Case {
+pub fn scaled_case(rng: &mut SplitMix64) -> Case {
     let ra = Rational::from(1);
-    let rot = rotation_from_quaternion(rng.quaternion(9));
-    if rng.int(0, 1) == 0 {
-        let kr = rng.int(-6, 6) as i32;
-        let kc = rng.int(-3, 6) as i32;
-        let rb = rat(rng.int(8, 128), 64) * pow10(kr);
-        let c = [0, 1, 2].map(|_| rat(rng.int(-128, 128), 64) * pow10(kc));
+    let rot = rotation_from_quaternion(integer_quaternion(rng, 9));
+    if rng.signed_int(0, 1) == 0 {
+        let kr = rng.signed_int(-6, 6) as i32;
+        let kc = rng.signed_int(-3, 6) as i32;
+        let rb = rat(rng.signed_int(8, 128), 64) * pow10(kr);
+        let c = [0, 1, 2].map(|_| rat(rng.signed_int(-128, 128), 64) * pow10(kc));
         Case {
             family: "scaled",
             label: format!("rb~1e{kr} |c|~1e{kc}"),
             ra,
             b: RCircle::rotated(c, &rot, rb),
-            motion: Some(rng.motion()),
+            motion: Some(random_motion(rng)),
             analytic: None,
         }
     } else {
         // B(0) = (1 + gap, 0, 0): B passes within `gap` of A's point (1, 0, 0).
-        let kg = rng.int(-12, 0) as i32;
-        let kr = rng.int(-6, 6) as i32;
-        let rb = rat(rng.int(8, 128), 64) * pow10(kr);
+        let kg = rng.signed_int(-12, 0) as i32;
+        let kr = rng.signed_int(-6, 6) as i32;
+        let rb = rat(rng.signed_int(8, 128), 64) * pow10(kr);
         let gap = pow10(kg);
         let p = [Rational::from(1) + &gap, Rational::new(), Rational::new()];
         let c = [0, 1, 2].map(|k| &p[k] - Rational::from(&rb * &rot[0][k]));
@@ -228,7 +213,7 @@ pub fn scaled_case(rng: &mut Rng) -> Case {
             label: format!("gap 1e{kg} rb~1e{kr}"),
             ra,
             b: RCircle::rotated(c, &rot, rb),
-            motion: Some(rng.motion()),
+            motion: Some(random_motion(rng)),
             analytic: None,
         }
     }
@@ -386,7 +371,7 @@ pub fn catalogue() -> Vec<CatalogueEntry> {
 
 /// Catalogued configurations, perturbed (eps 0, 1e-14..1e-2 on centre x, centre y, tilt,
 /// radius) and rigidly moved.
-pub fn catalogue_cases(rng: &mut Rng, motions: usize) -> Vec<Case> {
+pub fn catalogue_cases(rng: &mut SplitMix64, motions: usize) -> Vec<Case> {
     let mut out = Vec::new();
     for (label, c, q, r, analytic) in catalogue() {
         for kind in 0..4 {
@@ -416,7 +401,7 @@ pub fn catalogue_cases(rng: &mut Rng, motions: usize) -> Vec<Case> {
                         label: format!("{label} kind {kind} eps 1e-{k}"),
                         ra: Rational::from(1),
                         b: RCircle::rotated(c.clone(), &rot, r.clone()),
-                        motion: Some(rng.motion()),
+                        motion: Some(random_motion(rng)),
                         analytic: if k == 0 { analytic } else { None },
                     });
                 }
@@ -682,7 +667,7 @@ impl Summary {
 /// Runs `count` random + scaled cases and the full catalogue (with `motions` rigid motions
 /// per perturbed entry).
 pub fn run(count: usize, seed: u64, motions: usize) -> Summary {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64(seed);
     let mut s = Summary::default();
     let trace = std::env::var_os("VERIFY_TRACE").is_some();
     for case in catalogue_cases(&mut rng, motions) {
@@ -758,7 +743,7 @@ impl std::fmt::Display for Summary {
 /// Prints random pairs (A canonical) with exactly 8 binormals whose roots are at least
 /// `min_gap` apart, with the exact binormal angles on B and lengths.
 pub fn print_eight(count: usize, seed: u64, min_gap: f64) {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64(seed);
     for _ in 0..count {
         let case = random_case(&mut rng);
         let pair = case.exact_pair();

@@ -109,8 +109,9 @@ pub fn real_roots_nalgebra(power: &[f64]) -> Option<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::circles::{random_case, Rng};
+    use crate::circles::random_case;
     use crate::exact_circle::count_real_roots;
+    use crate::random_profiles::SplitMix64;
     use rug::Rational;
     use std::cmp::Ordering;
 
@@ -184,7 +185,7 @@ mod tests {
     /// distinct real roots equal to the number of faer roots.
     #[test]
     fn faer_matches_nalgebra_and_exact_roots_on_circle_polynomials() {
-        let mut rng = Rng(0x5eed_fae5);
+        let mut rng = SplitMix64(0x5eed_fae5);
         let (mut compared, mut skipped) = (0, 0);
         for _ in 0..CASES {
             let case = random_case(&mut rng);

@@ -1,0 +1,180 @@
+//! The campaign: the pool, the fixed cases first, then `count` drawn cases over worker
+//! threads sharing one tree per (shape, eps). Panics inside queries are caught and reported
+//! with their location; a panic while placing a pose (an oracle bug) is a warning.
+
+use super::cases::{make_case, Case, PoseKind};
+use super::checked_query::run_case;
+use super::pool::{build_pool, Shape};
+use super::regressions::regression_cases;
+use super::report::Summary;
+use revdist::solid::Solid;
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::Instant;
+
+/// Default tree eps values drawn from.
+pub const DEFAULT_EPS: [f64; 4] = [1e-3, 1e-4, 1e-5, 1e-6];
+
+/// Campaign settings.
+#[derive(Debug, Clone)]
+pub struct CampaignOptions {
+    /// Random cases (the fixed regression cases come on top).
+    pub count: usize,
+    pub seed: u64,
+    /// Tree eps values to draw from.
+    pub eps: Vec<f64>,
+    /// Where reproducers go.
+    pub out: PathBuf,
+    /// Worker threads (0: all cores).
+    pub threads: usize,
+    /// Random profiles in the pool (0: from the count).
+    pub random_profiles: usize,
+    /// Include the fixed regression cases.
+    pub regressions: bool,
+    /// Failures printed in full.
+    pub print_failures: usize,
+    /// Draw every solid from the balls and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`,
+    /// `sphere`), whose queries take the closed form of `revdist::query::offset`.
+    pub primitives: bool,
+}
+
+impl Default for CampaignOptions {
+    fn default() -> Self {
+        CampaignOptions {
+            count: 1000,
+            seed: 1,
+            eps: DEFAULT_EPS.to_vec(),
+            out: PathBuf::from("target/verify-queries"),
+            threads: 0,
+            random_profiles: 0,
+            regressions: true,
+            print_failures: 25,
+            primitives: false,
+        }
+    }
+}
+
+/// A tree built once, shared by the workers that need it.
+type TreeSlot = Arc<OnceLock<Result<Solid, String>>>;
+
+/// Trees built so far, shared by the workers: one build per (shape, eps bits).
+#[derive(Default)]
+pub(super) struct TreeCache {
+    map: Mutex<HashMap<(usize, u64), TreeSlot>>,
+}
+
+impl TreeCache {
+    pub(super) fn get(&self, shapes: &[Shape], k: usize, eps: f64) -> Result<Solid, String> {
+        let cell = {
+            let mut m = self.map.lock().expect("not poisoned");
+            Arc::clone(m.entry((k, eps.to_bits())).or_default())
+        };
+        cell.get_or_init(|| {
+            Solid::from_profile(Arc::clone(&shapes[k].profile), eps)
+                .map_err(|e| format!("tree of '{}' at eps {eps:e}: {e}", shapes[k].name))
+        })
+        .clone()
+    }
+}
+
+thread_local! {
+    /// Location of the last panic on this thread (set by the campaign's panic hook).
+    static PANIC_LOCATION: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
+}
+
+/// A panic payload as text, with the location the hook recorded.
+pub(super) fn panic_message(e: &(dyn std::any::Any + Send)) -> String {
+    let msg = if let Some(s) = e.downcast_ref::<&str>() {
+        s.to_string()
+    } else if let Some(s) = e.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "non-string panic payload".to_string()
+    };
+    let loc = PANIC_LOCATION.with(|l| l.borrow().clone());
+    format!("{msg} at {loc}")
+}
+
+/// Runs the campaign. Panics inside queries are caught and reported as failures (the panic
+/// hook is replaced by a silent one that records the location while the campaign runs).
+pub fn run(opts: &CampaignOptions) -> Summary {
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|info| {
+        let loc = info
+            .location()
+            .map(|l| format!("{}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        PANIC_LOCATION.with(|l| *l.borrow_mut() = loc);
+    }));
+    let s = run_inner(opts);
+    std::panic::set_hook(previous);
+    s
+}
+
+fn run_inner(opts: &CampaignOptions) -> Summary {
+    let start = Instant::now();
+    let n_random = if opts.random_profiles > 0 {
+        opts.random_profiles
+    } else {
+        (opts.count / 8).clamp(10, 200)
+    };
+    let shapes = Arc::new(build_pool(opts.seed, n_random));
+    let mut ids: Vec<Option<Case>> = Vec::new();
+    if opts.regressions {
+        ids.extend(regression_cases(&shapes).into_iter().map(Some));
+    }
+    let n_fixed = ids.len();
+    ids.extend((0..opts.count).map(|_| None));
+    let threads = if opts.threads > 0 {
+        opts.threads
+    } else {
+        std::thread::available_parallelism().map_or(2, |n| n.get())
+    };
+    let trees = TreeCache::default();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let results = Mutex::new(Vec::with_capacity(ids.len()));
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                if i >= ids.len() {
+                    break;
+                }
+                let t0 = Instant::now();
+                let case = match &ids[i] {
+                    Some(c) => c.clone(),
+                    None => {
+                        let made = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                            make_case(i - n_fixed, opts.seed, &shapes, &opts.eps, opts.primitives)
+                        }));
+                        match made {
+                            Ok(c) => c,
+                            Err(e) => {
+                                // An oracle bug, not a query failure: report and go on.
+                                eprintln!(
+                                    "warning: placing case {} panicked: {}",
+                                    i - n_fixed,
+                                    panic_message(e.as_ref())
+                                );
+                                continue;
+                            }
+                        }
+                    }
+                };
+                let place_time = t0.elapsed();
+                let mut r = run_case(case, &shapes, &trees);
+                r.place_time = place_time;
+                results.lock().expect("not poisoned").push(r);
+            });
+        }
+    });
+    let mut results = results.into_inner().expect("not poisoned");
+    results.sort_by_key(|r| (r.case.kind != PoseKind::Regression, r.case.id));
+    Summary {
+        results,
+        shapes,
+        wall: start.elapsed(),
+        out: opts.out.clone(),
+    }
+}
