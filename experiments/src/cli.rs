@@ -109,6 +109,39 @@ impl Seed {
     }
 }
 
+/// `--frames N` and `--frames-1e-5 N`: frames of a motion or deformation, at eps >= 5e-5 and
+/// below (where the baselines are slowest, so fewer).
+#[derive(Args, Debug, Clone)]
+pub struct Frames {
+    /// Frames per pair at eps >= 5e-5 [default: the driver's]
+    #[arg(long = "frames", id = "frames", value_name = "N", value_parser = positive_count)]
+    pub coarse: Option<usize>,
+    /// Frames per pair at eps < 5e-5 [default: the driver's]
+    #[arg(long = "frames-1e-5", id = "frames_fine", value_name = "N",
+          value_parser = positive_count)]
+    pub fine: Option<usize>,
+}
+
+impl Frames {
+    /// The (coarse, fine) counts given, each falling back to its default.
+    pub fn or(&self, (coarse, fine): (usize, usize)) -> (usize, usize) {
+        (self.coarse.unwrap_or(coarse), self.fine.unwrap_or(fine))
+    }
+}
+
+/// Below this eps a driver runs its fine count of poses or frames (`--frames-1e-5`,
+/// `--poses-1e-5`).
+pub const FINE_EPS: f64 = 5e-5;
+
+/// The count of a (coarse, fine) pair that applies at `eps`.
+pub fn count_at(eps: f64, (coarse, fine): (usize, usize)) -> usize {
+    if eps < FINE_EPS {
+        fine
+    } else {
+        coarse
+    }
+}
+
 /// All six shared flags.
 #[derive(Args, Debug, Clone)]
 pub struct Common {
