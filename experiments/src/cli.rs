@@ -7,17 +7,20 @@ use crate::args::{accuracy, model_pair, positive_count, seed, ModelPair};
 use clap::Args;
 use std::path::PathBuf;
 
+/// Id of the `--out` argument: [`crate::driver`] creates that folder before a driver runs.
+pub const OUT_ID: &str = "out";
+
 /// `--out DIR`: where the outputs go.
 #[derive(Args, Debug, Clone)]
 pub struct Out {
     /// Folder to write the outputs to (created if missing)
-    #[arg(
-        long = "out",
-        id = "out",
-        value_name = "DIR",
-        default_value = "figures"
-    )]
+    #[arg(long = "out", id = OUT_ID, value_name = "DIR", default_value = "figures")]
     pub dir: PathBuf,
+}
+
+/// The values given, or `default` when none were.
+pub fn given_or<T: Clone>(given: &[T], default: &[T]) -> Vec<T> {
+    if given.is_empty() { default } else { given }.to_vec()
 }
 
 /// `--eps E[,E...]`: the accuracies to run at.
@@ -32,11 +35,7 @@ pub struct Eps {
 impl Eps {
     /// The accuracies given, or `default` when none were.
     pub fn or(&self, default: &[f64]) -> Vec<f64> {
-        if self.list.is_empty() {
-            default.to_vec()
-        } else {
-            self.list.clone()
-        }
+        given_or(&self.list, default)
     }
 }
 
@@ -52,11 +51,7 @@ pub struct Pairs {
 impl Pairs {
     /// The pairs given, or `default` when none were.
     pub fn or(&self, default: &[ModelPair]) -> Vec<ModelPair> {
-        if self.list.is_empty() {
-            default.to_vec()
-        } else {
-            self.list.clone()
-        }
+        given_or(&self.list, default)
     }
 }
 

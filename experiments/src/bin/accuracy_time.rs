@@ -12,7 +12,7 @@
 
 use clap::Parser;
 use experiments::cli::{Out, Poses, Seed};
-use experiments::driver::{self, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::table::Table;
 use experiments::SplitMix;
 use nalgebra::{Isometry3, Translation3, Vector3};
@@ -20,7 +20,6 @@ use plotters::prelude::*;
 use revdist::models;
 use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
-use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -252,12 +251,6 @@ struct Args {
     poses: Poses,
     #[command(flatten)]
     seed: Seed,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.out.dir)
-    }
 }
 
 fn main() {

@@ -21,7 +21,7 @@ use clap::Parser;
 use experiments::args::positive_count;
 use experiments::baseline_mesh::Layout;
 use experiments::cli::{Out, Paper};
-use experiments::driver::{self, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
 use experiments::progress;
 use experiments::provenance::Provenance;
@@ -32,7 +32,6 @@ use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
 use revdist::solid::Solid;
 use std::fmt::Write as _;
-use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -64,12 +63,6 @@ struct Args {
     morph_frames: Option<usize>,
     #[command(flatten)]
     paper: Paper,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.out.dir)
-    }
 }
 
 impl Args {

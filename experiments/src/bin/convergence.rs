@@ -13,11 +13,11 @@
 //! (default `figures`; `--paper` refines to 64 pieces per spiral with twice the samples);
 //! writes `DIR/convergence.csv` and `DIR/convergence.svg`.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::Parser;
 use experiments::cli::{Out, Paper};
-use experiments::driver::{self, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::table::Table;
 use plotters::prelude::*;
 use revdist::biarc::oracle::sampled_hausdorff;
@@ -121,12 +121,6 @@ struct Args {
     out: Out,
     #[command(flatten)]
     paper: Paper,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.out.dir)
-    }
 }
 
 /// A CSV line: a row and the slope fitted on its model and method.

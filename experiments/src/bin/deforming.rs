@@ -25,7 +25,7 @@
 use clap::Parser;
 use experiments::baseline_mesh::{agrees_with_fcl, certified_mesh, obbrss_of, Layout};
 use experiments::cli::{count_at, Eps, Frames, Out, Paper, Seed};
-use experiments::driver::{self, CheckFailed, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
 use experiments::poses::{log_uniform, slide_to_gap, PLACEMENT_EPS};
 use experiments::progress;
@@ -39,7 +39,6 @@ use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};
 use revdist::solid::Solid;
 use std::fmt::Write as _;
-use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -72,12 +71,6 @@ struct Args {
     paper: Paper,
     #[command(flatten)]
     seed: Seed,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.out.dir)
-    }
 }
 
 /// Per static model and eps: sums over frames.
@@ -285,12 +278,8 @@ fn run(args: Args) -> DriverResult {
     std::fs::write(out.join("deforming.md"), &md)?;
     draw(&out.join("deforming.svg"), &rows, &eps_list)?;
     print!("{md}");
-    let violations: usize = rows.iter().map(|r| r.violations).sum();
-    if violations > 0 {
-        let message = format!("{violations} cross-check violations (see above)");
-        return Err(CheckFailed(message).into());
-    }
-    Ok(())
+    let violations = rows.iter().map(|r| r.violations).sum();
+    driver::check_violations(violations, "(see above)")
 }
 
 /// The columns of `deforming.csv` and of the table in `deforming.md`.

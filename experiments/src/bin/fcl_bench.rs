@@ -35,7 +35,7 @@ use clap::Parser;
 use experiments::args::{model_pairs, positive_count};
 use experiments::baseline_mesh::{agrees_with_fcl, Layout};
 use experiments::cli::{count_at, Common};
-use experiments::driver::{self, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::shapes::{diagonal, profile, query_tree_bytes, PAPER_EPS};
 use experiments::stats::{human_bytes, median, quantile, time_each, us};
@@ -46,7 +46,6 @@ use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::fmt::Write as _;
-use std::path::Path;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -78,12 +77,6 @@ struct Args {
     /// Poses per pair at eps < 5e-5, the first of the same sequence [default: 100; --paper: 1000]
     #[arg(long = "poses-1e-5", value_name = "N", value_parser = positive_count)]
     poses_fine: Option<usize>,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.common.out.dir)
-    }
 }
 
 /// One row of the table.

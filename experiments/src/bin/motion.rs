@@ -25,7 +25,7 @@ use experiments::baseline_mesh::{
     agrees_with_fcl, certified_mesh, obbrss_of, EDGE_CAP_REL, LAYOUT_NAMES,
 };
 use experiments::cli::{count_at, Eps, Frames, Out, Pairs, Paper, Seed};
-use experiments::driver::{self, CheckFailed, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, grouped_bars_coloured, BarSeries};
 use experiments::poses::{pair_seed, SmoothMotion};
 use experiments::progress;
@@ -40,7 +40,6 @@ use revdist::solid::Solid;
 use revdist::tessellate::CertifiedMesh;
 use std::collections::HashMap;
 use std::fmt::Write as _;
-use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 use verify::baselines::fcl::FclMesh;
@@ -80,12 +79,6 @@ struct Args {
     paper: Paper,
     #[command(flatten)]
     seed: Seed,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.out.dir)
-    }
 }
 
 /// FCL's structures of one shape at one eps: both layouts' certified meshes and OBBRSS.
@@ -330,12 +323,8 @@ fn run(args: Args) -> DriverResult {
         draw(out, &rows, eps)?;
     }
     print!("{md}");
-    let violations: usize = rows.iter().map(|r| r.violations).sum();
-    if violations > 0 {
-        let message = format!("{violations} cross-check violations (see above)");
-        return Err(CheckFailed(message).into());
-    }
-    Ok(())
+    let violations = rows.iter().map(|r| r.violations).sum();
+    driver::check_violations(violations, "(see above)")
 }
 
 /// The columns of `motion.csv` and of the table in `motion.md`.

@@ -32,8 +32,8 @@
 use clap::Parser;
 use experiments::args::{accuracy, model_pairs, positive_count, ModelPair};
 use experiments::baseline_mesh::{agrees_with_fcl, Layout, LAYOUT_NAMES};
-use experiments::cli::Common;
-use experiments::driver::{self, CheckFailed, DriverArgs, DriverResult};
+use experiments::cli::{given_or, Common};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{log_log_panels, Curve, Panel};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::progress::bar;
@@ -147,12 +147,6 @@ struct Args {
     max_triangles: Option<usize>,
 }
 
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.common.out.dir)
-    }
-}
-
 /// What a run measures: the arguments with the defaults filled in.
 struct Settings {
     poses: usize,
@@ -167,17 +161,13 @@ struct Settings {
 impl Settings {
     fn new(args: &Args) -> Settings {
         let c = &args.common;
-        let or = |given: &Vec<f64>, default: &[f64]| match given.is_empty() {
-            true => default.to_vec(),
-            false => given.clone(),
-        };
         let mut s = Settings {
             poses: c.poses.or(c.paper.pick(DEFAULT_POSES, PAPER_POSES)),
             pairs: c.pairs.or(&model_pairs(DEFAULT_PAIRS)),
             seed: c.seed.or(CLOSE_SEED),
             rev_eps: c.eps.or(&REV_EPS),
-            refine_eps: or(&args.refine_eps, &REFINE_EPS),
-            fcl_eps: or(&args.fcl_eps, &FCL_EPS),
+            refine_eps: given_or(&args.refine_eps, &REFINE_EPS),
+            fcl_eps: given_or(&args.fcl_eps, &FCL_EPS),
             max_triangles: args.max_triangles.unwrap_or(MAX_TRIANGLES),
         };
         for list in [&mut s.rev_eps, &mut s.refine_eps, &mut s.fcl_eps] {
@@ -404,13 +394,8 @@ fn run(cli: Args) -> DriverResult {
         out.display(),
         rows.len()
     );
-    if violations > 0 {
-        return Err(CheckFailed(format!(
-            "{violations} cross-check violations (revdist's interval missed FCL's); see pareto.md"
-        ))
-        .into());
-    }
-    Ok(())
+    let detail = "(revdist's interval missed FCL's); see pareto.md";
+    driver::check_violations(violations, detail)
 }
 
 /// The 1-minute load average (other processes competing for the cores make timings noisy).

@@ -15,13 +15,12 @@
 use clap::Parser;
 use experiments::args::positive_count;
 use experiments::cli::{Out, Seed};
-use experiments::driver::{self, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::table::Table;
 use experiments::SplitMix;
 use nalgebra::{Isometry3, Point2, Translation3};
 use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
 use revdist::query::{Patch, ProfileArc};
-use std::path::Path;
 use std::time::Instant;
 
 /// Gaps to contact.
@@ -135,12 +134,6 @@ struct Args {
     patch_pairs: Option<usize>,
     #[command(flatten)]
     seed: Seed,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.out.dir)
-    }
 }
 
 fn main() {

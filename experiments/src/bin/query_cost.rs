@@ -18,7 +18,7 @@
 use clap::Parser;
 use experiments::args::{positive_count, ModelPair};
 use experiments::cli::{Eps, Pairs, Poses, Seed};
-use experiments::driver::{self, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::poses::{log_uniform, pose_at_gap};
 use experiments::shapes::{centre, profile};
 use experiments::stats::median;
@@ -26,7 +26,6 @@ use experiments::table::Table;
 use experiments::SplitMix;
 use revdist::query::{distance, distance_cached, QueryCache, QueryOptions, Tolerance};
 use revdist::solid::Solid;
-use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -70,12 +69,6 @@ struct Args {
     /// Warm-start each timed query from the best leaf pair of an untimed query on its pose
     #[arg(long)]
     best_first: bool,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        None
-    }
 }
 
 /// `--tolerance`: `trees` or an absolute width.

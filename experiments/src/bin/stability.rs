@@ -16,7 +16,7 @@ use std::time::Instant;
 use clap::Parser;
 use experiments::args::positive_count;
 use experiments::cli::{Out, Paper};
-use experiments::driver::{self, DriverArgs, DriverResult};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, log_tick, PlotResult, CAPTION, FONT, LABEL, TICK};
 use experiments::progress::bar;
 use experiments::provenance::Provenance;
@@ -50,12 +50,6 @@ struct Args {
     seeds: Option<usize>,
     #[command(flatten)]
     paper: Paper,
-}
-
-impl DriverArgs for Args {
-    fn out_dir(&self) -> Option<&Path> {
-        Some(&self.out.dir)
-    }
 }
 
 /// The study's errors (shareable across threads) as a driver's error.
