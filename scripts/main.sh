@@ -37,20 +37,20 @@ step() {  # step NAME COMMAND...: run, time, record
 if [ ${#paper[@]} -eq 0 ]; then
     fcl_poses=(--poses 100 --poses-1e-5 50); query_poses=(--poses 100); cross=(--poses 100)
 else
-    fcl_poses=(--full); query_poses=(--poses 1000); cross=(--poses 1000)
+    fcl_poses=(--paper); query_poses=(--poses 1000); cross=(--poses 1000)
 fi
 
 step profiles     $bin/revdist figures --out "$out"                          # model profiles, M_t frames
-step convergence  $bin/convergence "$out" "${paper[@]}"                       # biarcs n^-3 vs chords n^-2
+step convergence  $bin/convergence --out "$out" "${paper[@]}"                 # biarcs n^-3 vs chords n^-2
 step bvh_tables   $bin/bvh_tables --out "$out" "${paper[@]}"                  # Tables 1-2, Figure 9
-step query_times  $bin/accuracy_time "$out" "${query_poses[@]}"               # where a query spends its time
+step query_times  $bin/accuracy_time --out "$out" "${query_poses[@]}"         # where a query spends its time
 step fcl_bench    $bin/fcl_bench --out "$out" "${fcl_poses[@]}"               # speed ratios vs FCL on close poses
 step motion       $bin/motion --out "$out" "${paper[@]}"                      # Figure 12: 15 pairs in continuous motion
 step deforming    $bin/deforming --out "$out" "${paper[@]}"                   # Figure 8: static models vs M_t
 step pareto       $bin/pareto --out "$out" "${paper[@]}"                      # accuracy vs time, build, memory
 step stability    $bin/stability --out "$out" "${paper[@]}"                   # degenerate families, exact references
 step crosscheck   $bin/verify crosscheck --out "$out/crosscheck" "${cross[@]}"  # vs FCL, CGAL, libccd
-step kernels      $bin/patch_kernels "$out"                                  # leaf kernels near contact
+step kernels      $bin/patch_kernels --out "$out"                            # leaf kernels near contact
 step scenes       bash -c 'for f in experiments/scenes/*.toml; do '"$bin"'/revdist-scene "$f" --out '"$out"'/scenes > /dev/null || exit 1; done'  # example scenes: CSV + cost summaries
 echo "total $SECONDS s" | tee -a "$timing" >&2
 echo "figures and tables written to $out/ (step times in $timing)"

@@ -2,6 +2,8 @@
 
 pub mod args;
 pub mod baseline_mesh;
+pub mod cli;
+pub mod driver;
 pub mod plot;
 pub mod poses;
 pub mod progress;
@@ -10,6 +12,7 @@ pub use verify::provenance;
 pub mod shapes;
 pub mod stability;
 pub mod stats;
+pub mod table;
 
 use nalgebra::{UnitQuaternion, Vector3};
 

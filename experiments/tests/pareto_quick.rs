@@ -185,11 +185,20 @@ fn checks_reject_bad_rows() {
 #[test]
 fn bad_arguments_fail_with_a_message() {
     for (args, msg) in [
-        (vec!["--poses", "0"], "--poses needs a positive integer"),
-        (vec!["--pairs", "pawn"], "not of the form a-b"),
+        (
+            vec!["--poses", "0"],
+            "'--poses <N>': needs a positive integer",
+        ),
+        (
+            vec!["--pairs", "pawn"],
+            "'pawn' for '--pairs <a-b,...>': needs a model pair",
+        ),
         (vec!["--pairs", "pawn-teapot"], "teapot"),
-        (vec!["--eps", "1e-3,2"], "--eps needs numbers in (0, 1)"),
-        (vec!["--frobnicate"], "unknown argument"),
+        (
+            vec!["--eps", "1e-3,2"],
+            "'2' for '--eps <E,...>': needs a number in (0, 1)",
+        ),
+        (vec!["--frobnicate"], "unexpected argument '--frobnicate'"),
     ] {
         let out = Command::new(env!("CARGO_BIN_EXE_pareto"))
             .args(&args)

@@ -17,17 +17,21 @@
 //! Usage: `bvh_tables [--out DIR] [--morph-frames N] [--paper]`. Writes `bvh_tables.csv`,
 //! `bvh_tables.md` and `build_time.svg` (default `figures`).
 
+use clap::Parser;
+use experiments::args::positive_count;
 use experiments::baseline_mesh::Layout;
+use experiments::cli::{Out, Paper};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
 use experiments::progress;
 use experiments::provenance::Provenance;
 use experiments::shapes::{query_tree_bytes, PAPER_EPS, PAPER_MODELS};
 use experiments::stats::{human_bytes, mean, median};
+use experiments::table::Table;
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
 use revdist::solid::Solid;
 use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -45,55 +49,32 @@ const PAPER_FCL_MORPH_FRAMES: usize = 50;
 /// Suffix of the freeform variants' names.
 const FREEFORM_SUFFIX: &str = "_ff";
 
+/// BVH data size, node counts and construction time (the paper's Tables 1-2 and Figure 9):
+/// revdist's query tree and biarc tree against FCL 0.7's OBBRSS and RSS hierarchies on
+/// certified meshes of the same eps (1e-3, 1e-4, 1e-5), for the paper's five models, their
+/// freeform variants and the deforming model M_t averaged over its frames. Writes
+/// bvh_tables.csv, bvh_tables.md and build_time.svg.
+#[derive(Parser)]
 struct Args {
-    out: PathBuf,
-    morph_frames: usize,
-    fcl_morph_frames: usize,
+    #[command(flatten)]
+    out: Out,
+    /// M_t frames for revdist's mean build time [default: 50; --paper: 500]
+    #[arg(long, value_name = "N", value_parser = positive_count)]
+    morph_frames: Option<usize>,
+    #[command(flatten)]
+    paper: Paper,
 }
 
-fn parse_args() -> Result<Args, String> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut a = Args {
-        out: PathBuf::from("figures"),
-        morph_frames: DEFAULT_MORPH_FRAMES,
-        fcl_morph_frames: FCL_MORPH_FRAMES,
-    };
-    let mut i = 0;
-    while i < args.len() {
-        let value = || {
-            args.get(i + 1)
-                .cloned()
-                .ok_or_else(|| format!("{} needs a value", args[i]))
-        };
-        match args[i].as_str() {
-            "--out" => a.out = PathBuf::from(value()?),
-            "--morph-frames" => {
-                let v = value()?;
-                a.morph_frames = match v.parse::<usize>() {
-                    Ok(n) if n > 0 => n,
-                    _ => {
-                        return Err(format!(
-                            "--morph-frames needs a positive integer, got '{v}'"
-                        ))
-                    }
-                };
-                a.fcl_morph_frames = a.fcl_morph_frames.min(a.morph_frames);
-            }
-            "--paper" => {
-                a.morph_frames = PAPER_MORPH_FRAMES;
-                a.fcl_morph_frames = PAPER_FCL_MORPH_FRAMES;
-                i += 1;
-                continue;
-            }
-            "-h" | "--help" => {
-                println!("usage: bvh_tables [--out DIR] [--morph-frames N] [--paper]");
-                std::process::exit(0);
-            }
-            o => return Err(format!("unknown argument '{o}' (try --help)")),
-        }
-        i += 2;
+impl Args {
+    /// M_t frames of revdist's and of FCL's mean build time (FCL's never more than revdist's).
+    fn morph_frames(&self) -> (usize, usize) {
+        let paper = &self.paper;
+        let revdist = self
+            .morph_frames
+            .unwrap_or(paper.pick(DEFAULT_MORPH_FRAMES, PAPER_MORPH_FRAMES));
+        let fcl = paper.pick(FCL_MORPH_FRAMES, PAPER_FCL_MORPH_FRAMES);
+        (revdist, fcl.min(revdist))
     }
-    Ok(a)
 }
 
 /// One row: a model (or M_t's mean) at one eps.
@@ -205,14 +186,11 @@ fn model_list() -> Vec<(&'static str, String)> {
 }
 
 fn main() {
-    if let Err(e) = run() {
-        eprintln!("error: {e}");
-        std::process::exit(2);
-    }
+    driver::run(run)
 }
 
-fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let args = parse_args()?;
+fn run(args: Args) -> DriverResult {
+    let (morph_frames, fcl_morph_frames) = args.morph_frames();
     let started = Instant::now();
     let models = model_list();
     let prov = Provenance::collect(
@@ -228,16 +206,15 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                     .join(" "),
             ),
             ("build_repeats", BUILD_REPEATS.to_string()),
-            ("morph_frames_revdist", args.morph_frames.to_string()),
-            ("morph_frames_fcl", args.fcl_morph_frames.to_string()),
+            ("morph_frames_revdist", morph_frames.to_string()),
+            ("morph_frames_fcl", fcl_morph_frames.to_string()),
             (
                 "fcl_mesh",
                 "certified tessellation, balanced vertices, no edge cap".into(),
             ),
         ],
     );
-    let steps =
-        (PAPER_EPS.len() * (models.len() + args.morph_frames + args.fcl_morph_frames)) as u64;
+    let steps = (PAPER_EPS.len() * (models.len() + morph_frames + fcl_morph_frames)) as u64;
     let bar = progress::bar(steps, "bvh_tables");
     let mut rows = Vec::new();
     for &eps in &PAPER_EPS {
@@ -257,16 +234,16 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         // M_t: revdist over `morph_frames` frames, FCL over a spread subset.
         let mut rev = Vec::new();
         let mut fcl = Vec::new();
-        for k in 0..args.morph_frames {
-            let t = k as f64 / args.morph_frames as f64;
+        for k in 0..morph_frames {
+            let t = k as f64 / morph_frames as f64;
             let p = Arc::new(revdist::models::morph(t)?);
             let mut row = Row::default();
             revdist_side(&mut row, &p, eps)?;
             rev.push(row);
             bar.inc(1);
         }
-        for k in 0..args.fcl_morph_frames {
-            let t = k as f64 / args.fcl_morph_frames as f64;
+        for k in 0..fcl_morph_frames {
+            let t = k as f64 / fcl_morph_frames as f64;
             let p = revdist::models::morph(t)?;
             let mut row = Row::default();
             fcl_side(&mut row, &p, eps)?;
@@ -278,44 +255,84 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         rows.push(m);
     }
     bar.finish_and_clear();
-    std::fs::create_dir_all(&args.out)?;
-    std::fs::write(args.out.join("bvh_tables.csv"), csv(&rows, &prov))?;
+    let out = &args.out.dir;
+    let csv = prov.csv_preamble() + &node_count_table().csv_text(&rows);
+    std::fs::write(out.join("bvh_tables.csv"), csv)?;
     let md = markdown(&rows, &prov, started.elapsed().as_secs_f64());
-    std::fs::write(args.out.join("bvh_tables.md"), &md)?;
-    draw_build_times(&args.out.join("build_time.svg"), &rows)?;
+    std::fs::write(out.join("bvh_tables.md"), &md)?;
+    draw_build_times(&out.join("build_time.svg"), &rows)?;
     print!("{md}");
     Ok(())
 }
 
-fn csv(rows: &[Row], prov: &Provenance) -> String {
-    let mut s = prov.csv_preamble();
-    s.push_str("family,model,eps,spirals,biarc_nodes,biarc_leaves,depth,biarc_tree_bytes,query_tree_bytes,revdist_build_us,triangles,obbrss_bvs,rss_bvs,obbrss_bytes,rss_bytes,mesh_ms,obbrss_build_ms,rss_build_ms,mesh_hausdorff_bound\n");
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{:e},{:.1},{:.1},{:.1},{:.1},{:.0},{:.0},{:.2},{:.0},{:.0},{:.0},{:.0},{:.0},{:.3},{:.3},{:.3},{:.4e}",
-            r.family,
-            r.model,
-            r.eps,
-            r.spirals,
-            r.nodes,
-            r.leaves,
-            r.depth,
-            r.biarc_bytes,
-            r.query_bytes,
-            r.rev_build_us,
-            r.triangles,
-            r.obbrss_bvs,
-            r.rss_bvs,
-            r.obbrss_bytes,
-            r.rss_bytes,
-            r.mesh_ms,
-            r.obbrss_build_ms,
-            r.rss_build_ms,
-            r.mesh_bound
-        );
-    }
-    s
+/// The `model` and `eps` columns that open every Markdown table.
+fn model_and_eps(table: Table<'static, Row>) -> Table<'static, Row> {
+    table
+        .markdown("model", |r| r.model.clone())
+        .markdown("eps", |r| format!("{:.0e}", r.eps))
+}
+
+/// The columns of `bvh_tables.csv`, and of Table 2 (node counts) in the Markdown.
+fn node_count_table() -> Table<'static, Row> {
+    let fixed = |digits: usize, f: fn(&Row) -> f64| move |r: &Row| format!("{:.*}", digits, f(r));
+    Table::new()
+        .csv("family", |r: &Row| r.family.to_owned())
+        .csv("model", |r| r.model.clone())
+        .with_markdown_header("model")
+        .csv("eps", |r| format!("{:e}", r.eps))
+        .with_markdown("eps", |r| format!("{:.0e}", r.eps))
+        .csv("spirals", fixed(1, |r| r.spirals))
+        .with_markdown("spirals", fixed(0, |r| r.spirals))
+        .csv("biarc_nodes", fixed(1, |r| r.nodes))
+        .with_markdown("biarc nodes", fixed(0, |r| r.nodes))
+        .csv("biarc_leaves", fixed(1, |r| r.leaves))
+        .with_markdown("leaves", fixed(0, |r| r.leaves))
+        .csv("depth", fixed(1, |r| r.depth))
+        .with_markdown("depth", fixed(0, |r| r.depth))
+        .csv("biarc_tree_bytes", fixed(0, |r| r.biarc_bytes))
+        .csv("query_tree_bytes", fixed(0, |r| r.query_bytes))
+        .csv("revdist_build_us", fixed(2, |r| r.rev_build_us))
+        .csv("triangles", fixed(0, |r| r.triangles))
+        .with_markdown_header("triangles")
+        .csv("obbrss_bvs", fixed(0, |r| r.obbrss_bvs))
+        .with_markdown_header("FCL OBBRSS BVs")
+        .csv("rss_bvs", fixed(0, |r| r.rss_bvs))
+        .with_markdown_header("FCL RSS BVs")
+        .csv("obbrss_bytes", fixed(0, |r| r.obbrss_bytes))
+        .csv("rss_bytes", fixed(0, |r| r.rss_bytes))
+        .csv("mesh_ms", fixed(3, |r| r.mesh_ms))
+        .csv("obbrss_build_ms", fixed(3, |r| r.obbrss_build_ms))
+        .csv("rss_build_ms", fixed(3, |r| r.rss_build_ms))
+        .csv("mesh_hausdorff_bound", |r| format!("{:.4e}", r.mesh_bound))
+}
+
+/// Table 1 (data size) of the Markdown.
+fn data_size_table() -> Table<'static, Row> {
+    model_and_eps(Table::new())
+        .markdown("revdist query tree", |r| human_bytes(r.query_bytes))
+        .markdown("revdist biarc tree", |r| human_bytes(r.biarc_bytes))
+        .markdown("FCL OBBRSS", |r| human_bytes(r.obbrss_bytes))
+        .markdown("FCL RSS", |r| human_bytes(r.rss_bytes))
+        .markdown("OBBRSS / revdist", |r| {
+            format!("{:.0}x", r.obbrss_bytes / r.query_bytes)
+        })
+}
+
+/// Figure 9 (construction time) of the Markdown.
+fn build_time_table() -> Table<'static, Row> {
+    model_and_eps(Table::new())
+        .markdown("revdist (us)", |r| format!("{:.1}", r.rev_build_us))
+        .markdown("tessellation (ms)", |r| format!("{:.1}", r.mesh_ms))
+        .markdown("FCL OBBRSS build (ms)", |r| {
+            format!("{:.1}", r.obbrss_build_ms)
+        })
+        .markdown("FCL RSS build (ms)", |r| format!("{:.1}", r.rss_build_ms))
+        .markdown("(tessellation + OBBRSS) / revdist", |r| {
+            format!(
+                "{:.0}x",
+                (r.mesh_ms + r.obbrss_build_ms) * 1e3 / r.rev_build_us
+            )
+        })
 }
 
 fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
@@ -329,63 +346,16 @@ fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
          `experiments/src/bin/bvh_tables.rs` in {secs:.0} s.\n"
     );
     let _ = writeln!(s, "## Table 1: data size\n");
-    let _ = writeln!(
-        s,
-        "| model | eps | revdist query tree | revdist biarc tree | FCL OBBRSS | FCL RSS | OBBRSS / revdist |\n| --- | --- | --- | --- | --- | --- | --- |"
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {} | {} | {} | {} | {:.0}x |",
-            r.model,
-            r.eps,
-            human_bytes(r.query_bytes),
-            human_bytes(r.biarc_bytes),
-            human_bytes(r.obbrss_bytes),
-            human_bytes(r.rss_bytes),
-            r.obbrss_bytes / r.query_bytes
-        );
-    }
+    s.push_str(&data_size_table().markdown_text(rows));
     let _ = writeln!(s, "\n## Table 2: node counts\n");
-    let _ = writeln!(
-        s,
-        "| model | eps | spirals | biarc nodes | leaves | depth | triangles | FCL OBBRSS BVs | FCL RSS BVs |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} |",
-            r.model,
-            r.eps,
-            r.spirals,
-            r.nodes,
-            r.leaves,
-            r.depth,
-            r.triangles,
-            r.obbrss_bvs,
-            r.rss_bvs
-        );
-    }
+    s.push_str(&node_count_table().markdown_text(rows));
     let _ = writeln!(s, "\n## Figure 9: construction time\n");
     let _ = writeln!(
         s,
         "revdist: biarc tree + query tree (median of {BUILD_REPEATS} builds). FCL: certified \
-         tessellation + BVH build (one build).\n\n\
-         | model | eps | revdist (us) | tessellation (ms) | FCL OBBRSS build (ms) | FCL RSS build (ms) | (tessellation + OBBRSS) / revdist |\n| --- | --- | --- | --- | --- | --- | --- |"
+         tessellation + BVH build (one build).\n"
     );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0}x |",
-            r.model,
-            r.eps,
-            r.rev_build_us,
-            r.mesh_ms,
-            r.obbrss_build_ms,
-            r.rss_build_ms,
-            (r.mesh_ms + r.obbrss_build_ms) * 1e3 / r.rev_build_us
-        );
-    }
+    s.push_str(&build_time_table().markdown_text(rows));
     s.push_str(&prov.markdown_footer());
     s
 }

@@ -9,13 +9,16 @@
 //! guaranteed bound is written next to it. Slopes are least-squares fits of log(error) on
 //! log(elements) over `m >= FIT_MIN_PIECES` (the asymptotic range).
 //!
-//! Usage: `cargo run --release -p experiments --bin convergence [OUT_DIR] [--paper]` (default
-//! `figures`; `--paper` refines to 64 pieces per spiral with twice the samples);
-//! writes `OUT_DIR/convergence.csv` and `OUT_DIR/convergence.svg`.
+//! Usage: `cargo run --release -p experiments --bin convergence -- [--out DIR] [--paper]`
+//! (default `figures`; `--paper` refines to 64 pieces per spiral with twice the samples);
+//! writes `DIR/convergence.csv` and `DIR/convergence.svg`.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
+use clap::Parser;
+use experiments::cli::{Out, Paper};
+use experiments::driver::{self, DriverResult};
+use experiments::table::Table;
 use plotters::prelude::*;
 use revdist::biarc::oracle::sampled_hausdorff;
 use revdist::biarc::{fit_biarc, Arc, BiarcTree, CurveSample};
@@ -107,30 +110,50 @@ fn slope(rows: &[&Row]) -> Option<f64> {
     experiments::stats::log_log_slope(&pts)
 }
 
-fn main() {
-    if let Err(e) = run() {
-        eprintln!("error: {e}");
-        std::process::exit(2);
-    }
+/// Convergence of the profile approximation (the paper's cubic convergence): for every
+/// built-in model, the densely sampled Hausdorff error of G1 biarcs against chords (a
+/// polyline) with the same number of elements, as each spiral is cut into 1, 2, 4, ... 16
+/// pieces (64 with --paper), with the biarcs' guaranteed bound and the fitted log-log slopes.
+/// Writes convergence.csv and convergence.svg.
+#[derive(Parser)]
+struct Args {
+    #[command(flatten)]
+    out: Out,
+    #[command(flatten)]
+    paper: Paper,
 }
 
-fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let mut out_dir = PathBuf::from("figures");
-    let mut setting = (MAX_LEVEL, SAMPLES);
-    for a in std::env::args().skip(1) {
-        match a.as_str() {
-            "--paper" => setting = (PAPER_MAX_LEVEL, 2 * SAMPLES),
-            "-h" | "--help" => {
-                println!("usage: convergence [OUT_DIR] [--paper]");
-                return Ok(());
-            }
-            s if s.starts_with('-') => {
-                return Err(format!("unknown argument '{s}' (try --help)").into())
-            }
-            s => out_dir = PathBuf::from(s),
-        }
-    }
-    std::fs::create_dir_all(&out_dir)?;
+/// A CSV line: a row and the slope fitted on its model and method.
+type SlopedRow<'a> = (&'a Row, Option<f64>);
+
+/// The columns of `convergence.csv`.
+fn convergence_table<'r>() -> Table<'static, SlopedRow<'r>> {
+    Table::new()
+        .csv("model", |(r, _): &SlopedRow| r.model.clone())
+        .csv("method", |(r, _)| r.method.to_owned())
+        .csv("pieces_per_spiral", |(r, _)| {
+            r.pieces_per_spiral.to_string()
+        })
+        .csv("elements", |(r, _)| r.elements.to_string())
+        .csv("max_error", |(r, _)| format!("{:.6e}", r.max_error))
+        .csv("max_bound", |(r, _)| match r.max_bound.is_nan() {
+            true => String::new(),
+            false => format!("{:.6e}", r.max_bound),
+        })
+        .csv("fitted_slope", |(_, s)| {
+            s.map(|v| format!("{v:.3}")).unwrap_or_default()
+        })
+}
+
+fn main() {
+    driver::run(run)
+}
+
+fn run(args: Args) -> DriverResult {
+    let out_dir = args.out.dir;
+    let setting = args
+        .paper
+        .pick((MAX_LEVEL, SAMPLES), (PAPER_MAX_LEVEL, 2 * SAMPLES));
     let mut names: Vec<String> = models::model_names()
         .iter()
         .map(|s| s.to_string())
@@ -165,9 +188,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             ("fit_min_pieces", FIT_MIN_PIECES.to_string()),
         ],
     );
-    let mut csv = prov.csv_preamble();
-    csv.push_str("model,method,pieces_per_spiral,elements,max_error,max_bound,fitted_slope\n");
     let mut slopes = Vec::new();
+    let mut lines: Vec<SlopedRow> = Vec::new();
     for name in &names {
         for method in ["biarc", "chord"] {
             let sel: Vec<&Row> = rows
@@ -176,25 +198,10 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 .collect();
             let s = slope(&sel);
             slopes.push((name.clone(), method, s));
-            for r in &sel {
-                writeln!(
-                    csv,
-                    "{},{},{},{},{:.6e},{},{}",
-                    r.model,
-                    r.method,
-                    r.pieces_per_spiral,
-                    r.elements,
-                    r.max_error,
-                    if r.max_bound.is_nan() {
-                        String::new()
-                    } else {
-                        format!("{:.6e}", r.max_bound)
-                    },
-                    s.map(|v| format!("{v:.3}")).unwrap_or_default()
-                )?;
-            }
+            lines.extend(sel.into_iter().map(|r| (r, s)));
         }
     }
+    let csv = prov.csv_preamble() + &convergence_table().csv_text(&lines);
     std::fs::write(out_dir.join("convergence.csv"), &csv)?;
     for (name, method, s) in &slopes {
         match s {

@@ -18,24 +18,27 @@
 //! per-frame time counts it in full, as a scene with one pair would. Every revdist answer is
 //! cross-checked against FCL's (`verify::crosscheck::criterion`).
 //!
-//! Usage: `deforming [--frames N] [--frames-1e-5 N] [--eps E,...] [--paper] [--out DIR]`.
+//! Usage: `deforming [--frames N] [--frames-1e-5 N] [--eps E,...] [--paper] [--seed S]
+//! [--out DIR]`.
 //! Writes `deforming.csv`, `deforming.md` and `deforming.svg` (default `figures`).
 
-use experiments::args;
+use clap::Parser;
 use experiments::baseline_mesh::{agrees_with_fcl, certified_mesh, obbrss_of, Layout};
+use experiments::cli::{count_at, Eps, Frames, Out, Paper, Seed};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, grouped_bars_coloured, shades, BarSeries};
 use experiments::poses::{log_uniform, slide_to_gap, PLACEMENT_EPS};
 use experiments::progress;
 use experiments::provenance::Provenance;
 use experiments::shapes::{centre, diagonal, PAPER_EPS, PAPER_MODELS};
 use experiments::stats::{mean, us};
+use experiments::table::Table;
 use experiments::SplitMix;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};
 use revdist::solid::Solid;
 use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -47,48 +50,27 @@ const DEFAULT_FRAMES_FINE: usize = 6;
 const PAPER_FRAMES: usize = 200;
 /// Range of the gap schedule.
 const GAPS: (f64, f64) = (2e-3, 1e-1);
-/// Seed of the directions and rotations.
+/// Default seed of the directions and rotations.
 const SEED: u64 = 0x0f16_0008;
 
+/// Each static model against the deforming model M_t (the paper's Figure 8): the mean time
+/// per frame with M_t's structure rebuilt every frame, revdist (tree build + warm-started
+/// certified query) against FCL 0.7 (certified tessellation + OBBRSS build + query), as M_t
+/// runs through its cycle at a smoothly varying gap; every revdist answer is cross-checked
+/// against FCL's. Writes deforming.csv, .md and .svg (40 frames per eps, 6 below 5e-5; 200
+/// with --paper).
+#[derive(Parser)]
 struct Args {
-    frames: usize,
-    frames_fine: usize,
-    eps: Vec<f64>,
-    out: PathBuf,
-}
-
-fn parse_args() -> Result<Args, String> {
-    let argv: Vec<String> = std::env::args().skip(1).collect();
-    let mut a = Args {
-        frames: DEFAULT_FRAMES,
-        frames_fine: DEFAULT_FRAMES_FINE,
-        eps: PAPER_EPS.to_vec(),
-        out: PathBuf::from("figures"),
-    };
-    let mut i = 0;
-    while i < argv.len() {
-        match argv[i].as_str() {
-            "--frames" => a.frames = args::count(&args::value(&argv, i)?, "--frames")?,
-            "--frames-1e-5" => {
-                a.frames_fine = args::count(&args::value(&argv, i)?, "--frames-1e-5")?
-            }
-            "--eps" => a.eps = args::eps_list(&args::value(&argv, i)?, "--eps")?,
-            "--out" => a.out = PathBuf::from(args::value(&argv, i)?),
-            "--paper" => {
-                a.frames = PAPER_FRAMES;
-                a.frames_fine = PAPER_FRAMES;
-                i += 1;
-                continue;
-            }
-            "-h" | "--help" => {
-                println!("usage: deforming [--frames N] [--frames-1e-5 N] [--eps E,...] [--paper] [--out DIR]");
-                std::process::exit(0);
-            }
-            o => return Err(format!("unknown argument '{o}' (try --help)")),
-        }
-        i += 2;
-    }
-    Ok(a)
+    #[command(flatten)]
+    out: Out,
+    #[command(flatten)]
+    eps: Eps,
+    #[command(flatten)]
+    frames: Frames,
+    #[command(flatten)]
+    paper: Paper,
+    #[command(flatten)]
+    seed: Seed,
 }
 
 /// Per static model and eps: sums over frames.
@@ -114,6 +96,10 @@ impl Row {
     fn fcl_frame(&self) -> f64 {
         mean(&self.fcl_mesh_us) + mean(&self.fcl_bvh_us) + mean(&self.fcl_query_us)
     }
+    /// FCL's time per frame over revdist's.
+    fn ratio(&self) -> f64 {
+        self.fcl_frame() / self.rev_frame()
+    }
 }
 
 /// The smooth gap schedule at frame `k` of `n`: log-sinusoidal between [`GAPS`].
@@ -123,21 +109,23 @@ fn gap_at(k: usize, n: usize) -> f64 {
 }
 
 fn main() {
-    if let Err(e) = run() {
-        eprintln!("error: {e}");
-        std::process::exit(2);
-    }
+    driver::run(run)
 }
 
-fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let args = parse_args()?;
+fn run(args: Args) -> DriverResult {
+    let eps_list = args.eps.or(&PAPER_EPS);
+    let frames = args.frames.or(args.paper.pick(
+        (DEFAULT_FRAMES, DEFAULT_FRAMES_FINE),
+        (PAPER_FRAMES, PAPER_FRAMES),
+    ));
+    let seed = args.seed.or(SEED);
     let started = Instant::now();
     let prov = Provenance::collect(
         "deforming (paper Figure 8: static models vs M_t, rebuild included)",
         &[
-            ("frames", args.frames.to_string()),
-            ("frames_eps_below_5e-5", args.frames_fine.to_string()),
-            ("eps", format!("{:?}", args.eps)),
+            ("frames", frames.0.to_string()),
+            ("frames_eps_below_5e-5", frames.1.to_string()),
+            ("eps", format!("{eps_list:?}")),
             (
                 "gaps",
                 format!("{GAPS:?} log-sinusoidal, two periods per cycle"),
@@ -150,24 +138,18 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 "fcl",
                 "certified tessellation (balanced) + OBBRSS build from scratch per frame".into(),
             ),
-            ("seed", format!("{SEED:#x}")),
+            ("seed", format!("{seed:#x}")),
         ],
     );
     let statics: Vec<Arc<Profile>> = PAPER_MODELS
         .iter()
         .map(|m| revdist::models::model(m).map(Arc::new))
         .collect::<Result<_, _>>()?;
-    let frames_at = |eps: f64| {
-        if eps < 5e-5 {
-            args.frames_fine
-        } else {
-            args.frames
-        }
-    };
+    let frames_at = |eps: f64| count_at(eps, frames);
 
     // Placement, before any timing: per static model a direction and rotation, per frame a pose.
-    let max_frames = args.eps.iter().map(|&e| frames_at(e)).max().unwrap_or(0);
-    let total: usize = args.eps.iter().map(|&e| frames_at(e)).sum();
+    let max_frames = eps_list.iter().map(|&e| frames_at(e)).max().unwrap_or(0);
+    let total: usize = eps_list.iter().map(|&e| frames_at(e)).sum();
     let bar = progress::bar(
         (PAPER_MODELS.len() * max_frames + total) as u64,
         "deforming",
@@ -178,7 +160,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .enumerate()
         .map(|(m, x)| {
-            let mut rng = SplitMix(SEED ^ (m as u64 * 0x9e37));
+            let mut rng = SplitMix(seed ^ (m as u64 * 0x9e37));
             let (dir, rot) = (rng.unit_vector(), rng.rotation());
             let factor = 1.0 + 0.1 * (log_uniform(&mut rng, 1.0, 2.0) - 1.5);
             Ok((
@@ -191,7 +173,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         .collect::<Result<_, Box<dyn std::error::Error>>>()?;
     let mut placement: Vec<Vec<Vec<Isometry3<f64>>>> = Vec::new(); // [eps][model][frame]
     let mut gaps: Vec<Vec<Vec<f64>>> = Vec::new();
-    for &eps in &args.eps {
+    for &eps in &eps_list {
         let n = frames_at(eps);
         let mut per_model = vec![Vec::with_capacity(n); statics.len()];
         let mut per_gap = vec![Vec::with_capacity(n); statics.len()];
@@ -218,7 +200,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     let mut rows = Vec::new();
-    for (ei, &eps) in args.eps.iter().enumerate() {
+    for (ei, &eps) in eps_list.iter().enumerate() {
         let n = frames_at(eps);
         // Static structures (not timed: they are built once per run).
         let static_solids: Vec<Solid> = statics
@@ -289,43 +271,58 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         rows.extend(eps_rows);
     }
     bar.finish_and_clear();
-    std::fs::create_dir_all(&args.out)?;
-    std::fs::write(args.out.join("deforming.csv"), csv(&rows, &prov))?;
+    let out = &args.out.dir;
+    let csv = prov.csv_preamble() + &frame_table().csv_text(&rows);
+    std::fs::write(out.join("deforming.csv"), csv)?;
     let md = markdown(&rows, &prov, started.elapsed().as_secs_f64());
-    std::fs::write(args.out.join("deforming.md"), &md)?;
-    draw(&args.out.join("deforming.svg"), &rows, &args.eps)?;
+    std::fs::write(out.join("deforming.md"), &md)?;
+    draw(&out.join("deforming.svg"), &rows, &eps_list)?;
     print!("{md}");
-    let violations: usize = rows.iter().map(|r| r.violations).sum();
-    if violations > 0 {
-        return Err(format!("{violations} cross-check violations (see above)").into());
-    }
-    Ok(())
+    let violations = rows.iter().map(|r| r.violations).sum();
+    driver::check_violations(violations, "(see above)")
 }
 
-fn csv(rows: &[Row], prov: &Provenance) -> String {
-    let mut s = prov.csv_preamble();
-    s.push_str("static_model,eps,frames,revdist_rebuild_us,revdist_query_us,revdist_frame_us,fcl_tessellate_us,fcl_obbrss_build_us,fcl_query_us,fcl_frame_us,ratio_fcl_over_revdist,mt_triangles_mean,gap_mean,violations\n");
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{:e},{},{:.2},{:.2},{:.2},{:.1},{:.1},{:.2},{:.1},{:.2},{:.0},{:.3e},{}",
-            r.model,
-            r.eps,
-            r.frames,
-            mean(&r.rev_build_us),
-            mean(&r.rev_query_us),
-            r.rev_frame(),
-            mean(&r.fcl_mesh_us),
-            mean(&r.fcl_bvh_us),
-            mean(&r.fcl_query_us),
-            r.fcl_frame(),
-            r.fcl_frame() / r.rev_frame(),
-            mean(&r.triangles),
-            mean(&r.gaps),
-            r.violations
-        );
-    }
-    s
+/// The columns of `deforming.csv` and of the table in `deforming.md`.
+fn frame_table() -> Table<'static, Row> {
+    let us = |digits: usize, f: fn(&Row) -> f64| move |r: &Row| format!("{:.*}", digits, f(r));
+    Table::new()
+        .csv("static_model", |r: &Row| r.model.clone())
+        .with_markdown_header("static model")
+        .csv("eps", |r| format!("{:e}", r.eps))
+        .with_markdown("eps", |r| format!("{:.0e}", r.eps))
+        .csv("frames", |r| r.frames.to_string())
+        .with_markdown_header("frames")
+        .right()
+        .csv("revdist_rebuild_us", us(2, |r| mean(&r.rev_build_us)))
+        .csv("revdist_query_us", us(2, |r| mean(&r.rev_query_us)))
+        .csv("revdist_frame_us", us(2, Row::rev_frame))
+        .markdown("revdist rebuild + query (us)", |r| {
+            let (build, query) = (mean(&r.rev_build_us), mean(&r.rev_query_us));
+            format!("{build:.0} + {query:.0} = {:.0}", r.rev_frame())
+        })
+        .right()
+        .csv("fcl_tessellate_us", us(1, |r| mean(&r.fcl_mesh_us)))
+        .csv("fcl_obbrss_build_us", us(1, |r| mean(&r.fcl_bvh_us)))
+        .csv("fcl_query_us", us(2, |r| mean(&r.fcl_query_us)))
+        .csv("fcl_frame_us", us(1, Row::fcl_frame))
+        .markdown("FCL tessellate + OBBRSS + query (us)", |r| {
+            let (mesh, bvh) = (mean(&r.fcl_mesh_us), mean(&r.fcl_bvh_us));
+            let query = mean(&r.fcl_query_us);
+            format!("{mesh:.0} + {bvh:.0} + {query:.0} = {:.0}", r.fcl_frame())
+        })
+        .right()
+        .csv("ratio_fcl_over_revdist", |r| format!("{:.2}", r.ratio()))
+        .with_markdown("FCL / revdist", |r| format!("{:.0}x", r.ratio()))
+        .right()
+        .csv("mt_triangles_mean", |r| {
+            format!("{:.0}", mean(&r.triangles))
+        })
+        .with_markdown_header("M_t triangles")
+        .right()
+        .csv("gap_mean", |r| format!("{:.3e}", mean(&r.gaps)))
+        .csv("violations", |r| r.violations.to_string())
+        .with_markdown_header("violations")
+        .right()
 }
 
 fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
@@ -336,29 +333,9 @@ fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
          tessellation of M_t + OBBRSS build + query. M_t moves through its whole cycle while \
          the gap follows a smooth schedule in [2e-3, 1e-1]. Every revdist answer is checked \
          against FCL's (`violations`).\n\n\
-         ![Figure 8](deforming.svg)\n\n\
-         | static model | eps | frames | revdist rebuild + query (us) | FCL tessellate + OBBRSS + query (us) | FCL / revdist | M_t triangles | violations |\n\
-         | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+         ![Figure 8](deforming.svg)\n\n",
     );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {} | {:.0} + {:.0} = {:.0} | {:.0} + {:.0} + {:.0} = {:.0} | {:.0}x | {:.0} | {} |",
-            r.model,
-            r.eps,
-            r.frames,
-            mean(&r.rev_build_us),
-            mean(&r.rev_query_us),
-            r.rev_frame(),
-            mean(&r.fcl_mesh_us),
-            mean(&r.fcl_bvh_us),
-            mean(&r.fcl_query_us),
-            r.fcl_frame(),
-            r.fcl_frame() / r.rev_frame(),
-            mean(&r.triangles),
-            r.violations
-        );
-    }
+    s.push_str(&frame_table().markdown_text(rows));
     let q_ratio: Vec<String> = rows
         .iter()
         .map(|r| {
@@ -417,12 +394,7 @@ fn draw(
     let finest = eps.iter().copied().fold(f64::INFINITY, f64::min);
     let notes: Vec<String> = PAPER_MODELS
         .iter()
-        .map(|m| {
-            format!(
-                "{:.0}x at {finest:.0e}",
-                get(m, finest, &|r| r.fcl_frame() / r.rev_frame())
-            )
-        })
+        .map(|m| format!("{:.0}x at {finest:.0e}", get(m, finest, &Row::ratio)))
         .collect();
     let mut colours = shades(colour(0), eps.len());
     colours.extend(shades(colour(1), eps.len()));

@@ -28,104 +28,55 @@
 //! row, the usual benchmark loop over one pair (its code and, for revdist's small trees, its
 //! data stay cached from pose to pose).
 //!
-//! Usage: `fcl_bench [--poses N] [--poses-1e-5 N] [--eps E]... [--pairs a-b,...] [--full]
-//! [--out DIR]`. Writes `DIR/fcl_bench.csv` and `DIR/fcl_bench.md` (default `figures`).
+//! Usage: `fcl_bench [--poses N] [--poses-1e-5 N] [--eps E,...] [--pairs a-b,...] [--paper]
+//! [--seed S] [--out DIR]` (`--full` is an alias of `--paper`). Writes `DIR/fcl_bench.csv` and `DIR/fcl_bench.md` (default `figures`).
 
-use experiments::args as cli;
+use clap::Parser;
+use experiments::args::{model_pairs, positive_count};
 use experiments::baseline_mesh::{agrees_with_fcl, Layout};
+use experiments::cli::{count_at, Common};
+use experiments::driver::{self, DriverResult};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
-use experiments::shapes::query_tree_bytes;
+use experiments::shapes::{diagonal, profile, query_tree_bytes, PAPER_EPS};
 use experiments::stats::{human_bytes, median, quantile, time_each, us};
+use experiments::table::Table;
 use nalgebra::Isometry3;
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// The issue-11 table.
 const DEFAULT_PAIRS: &str = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill";
-/// Accuracies of the comparison.
-const DEFAULT_EPS: [f64; 3] = [1e-3, 1e-4, 1e-5];
 /// Poses per pair at eps 1e-3 and 1e-4 (default run).
 const DEFAULT_POSES: usize = 200;
 /// Poses per pair at eps 1e-5 and below (default run): the same first poses, fewer of them,
 /// since FCL's queries are slowest there.
 const DEFAULT_POSES_FINE: usize = 100;
-/// Poses per pair with `--full`.
+/// Poses per pair with `--paper` (alias `--full`).
 const FULL_POSES: usize = 1000;
 /// Gap range of the poses (log-uniform), as in issue 11.
 const GAPS: (f64, f64) = CLOSE_GAPS;
 /// Capped layout: longest meridian edge as a fraction of the profile's bounding-box diagonal.
 const EDGE_CAP_REL: f64 = 1.0 / 64.0;
 
-/// The torus of issue 11: R 1, r 0.25 as one exact circle.
-fn profile(name: &str) -> Result<Profile, Box<dyn std::error::Error>> {
-    if name == "torus" {
-        use revdist::models::primitives::{arc, deg};
-        return Ok(Profile::new(
-            "torus",
-            vec![arc([1.0, 0.0], 0.25, deg(-90.0), deg(270.0))?],
-        )?);
-    }
-    Ok(revdist::models::model(name)?)
-}
-
-fn diagonal(p: &Profile) -> f64 {
-    let b = p.bounding_box();
-    (b.max.x - b.min.x).hypot(b.max.y - b.min.y)
-}
-
+/// revdist against FCL 0.7 at equal accuracy: per model pair and eps, on the same seeded
+/// poses near contact, the median query time of revdist (default tolerance, and tolerance 0
+/// with the traversal only) and of FCL OBBRSS and RSS on certified meshes in two layouts
+/// (cold, warm and blocked), with build times, memory, triangle counts, the widest certified
+/// interval, the speed ratios and a cross-check of every answer. Writes fcl_bench.csv and .md
+/// (200 poses per pair, 100 below eps 5e-5; 1,000 with --paper, alias --full).
+#[derive(Parser)]
+#[command(mut_arg("paper", |a| a.visible_alias("full")))]
 struct Args {
-    poses: usize,
-    poses_fine: usize,
-    eps: Vec<f64>,
-    pairs: Vec<(String, String)>,
-    out: PathBuf,
-}
-
-fn parse_args() -> Result<Args, String> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut a = Args {
-        poses: DEFAULT_POSES,
-        poses_fine: DEFAULT_POSES_FINE,
-        eps: vec![],
-        pairs: vec![],
-        out: PathBuf::from("figures"),
-    };
-    let mut pairs = DEFAULT_PAIRS.to_string();
-    let mut i = 0;
-    let value = |i: usize| cli::value(&args, i);
-    while i < args.len() {
-        let flag = args[i].as_str();
-        match flag {
-            "--full" => {
-                a.poses = FULL_POSES;
-                a.poses_fine = FULL_POSES;
-                i += 1;
-                continue;
-            }
-            "--poses" => a.poses = cli::count(&value(i)?, flag)?,
-            "--poses-1e-5" => a.poses_fine = cli::count(&value(i)?, flag)?,
-            "--eps" => a.eps.extend(cli::eps_list(&value(i)?, flag)?),
-            "--pairs" => pairs = value(i)?,
-            "--out" => a.out = PathBuf::from(value(i)?),
-            "-h" | "--help" => {
-                println!("usage: fcl_bench [--poses N] [--poses-1e-5 N] [--eps E]... [--pairs a-b,...] [--full] [--out DIR]");
-                std::process::exit(0);
-            }
-            o => return Err(format!("unknown argument '{o}' (try --help)")),
-        }
-        i += 2;
-    }
-    if a.eps.is_empty() {
-        a.eps = DEFAULT_EPS.to_vec();
-    }
-    a.pairs = cli::pairs(&pairs, "--pairs")?;
-    Ok(a)
+    #[command(flatten)]
+    common: Common,
+    /// Poses per pair at eps < 5e-5, the first of the same sequence [default: 100; --paper: 1000]
+    #[arg(long = "poses-1e-5", value_name = "N", value_parser = positive_count)]
+    poses_fine: Option<usize>,
 }
 
 /// One row of the table.
@@ -163,30 +114,50 @@ struct Row {
 
 const LAYOUT_NAMES: [&str; 2] = ["balanced", "capped"];
 
-fn main() {
-    if let Err(e) = run() {
-        eprintln!("error: {e}");
-        std::process::exit(2);
+impl Row {
+    /// FCL OBBRSS's and RSS's cold medians in their faster layouts.
+    fn best_obbrss_us(&self) -> f64 {
+        self.fcl[self.best_obbrss].0
+    }
+    fn best_rss_us(&self) -> f64 {
+        self.fcl[self.best_rss].1
+    }
+    /// FCL OBBRSS over revdist, warm and blocked (OBBRSS in its faster cold layout).
+    fn warm_ratio(&self) -> f64 {
+        self.fcl_obbrss_warm[self.best_obbrss] / self.rev_trees_warm
+    }
+    fn blocked_ratio(&self) -> f64 {
+        self.fcl_obbrss_blocked[self.best_obbrss] / self.rev_trees_blocked
     }
 }
 
-fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let args = parse_args()?;
+fn main() {
+    driver::run(run)
+}
+
+fn run(args: Args) -> DriverResult {
+    let c = &args.common;
+    let poses = (
+        c.poses.or(c.paper.pick(DEFAULT_POSES, FULL_POSES)),
+        args.poses_fine
+            .unwrap_or(c.paper.pick(DEFAULT_POSES_FINE, FULL_POSES)),
+    );
+    let (eps_list, pairs) = (
+        c.eps.or(&PAPER_EPS),
+        c.pairs.or(&model_pairs(DEFAULT_PAIRS)),
+    );
+    let seed = c.seed.or(CLOSE_SEED);
     let started = Instant::now();
     let mut rows = Vec::new();
-    for (na, nb) in &args.pairs {
+    for (na, nb) in &pairs {
         let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
         // Poses placed once per pair (fine trees), reused at every eps.
-        let n_max = args.poses.max(args.poses_fine);
+        let n_max = poses.0.max(poses.1);
         let pair = format!("{na}-{nb}");
-        let poses = close_poses(&pa, &pb, n_max, GAPS, pair_seed(CLOSE_SEED, &pair), || {})?;
-        for &eps in &args.eps {
-            let n = if eps < 5e-5 {
-                args.poses_fine
-            } else {
-                args.poses
-            };
-            rows.push(bench_row(&pair, (&pa, &pb), eps, &poses[..n])?);
+        let placed = close_poses(&pa, &pb, n_max, GAPS, pair_seed(seed, &pair), || {})?;
+        for &eps in &eps_list {
+            let n = count_at(eps, poses);
+            rows.push(bench_row(&pair, (&pa, &pb), eps, &placed[..n])?);
             let r = rows.last().expect("row");
             eprintln!(
                 "{pair} eps {eps:.0e}: revdist {:.1} us, FCL OBBRSS {:.1} us ({}), ratio {:.2} [{:.0} s]",
@@ -198,16 +169,15 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
-    std::fs::create_dir_all(&args.out)?;
     let prov = experiments::provenance::Provenance::collect(
         "fcl_bench (revdist vs FCL at equal accuracy)",
         &[
-            ("poses", args.poses.to_string()),
-            ("poses_eps_below_5e-5", args.poses_fine.to_string()),
-            ("eps", format!("{:?}", args.eps)),
+            ("poses", poses.0.to_string()),
+            ("poses_eps_below_5e-5", poses.1.to_string()),
+            ("eps", format!("{eps_list:?}")),
             (
                 "pairs",
-                args.pairs
+                pairs
                     .iter()
                     .map(|(a, b)| format!("{a}-{b}"))
                     .collect::<Vec<_>>()
@@ -215,13 +185,12 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             ),
         ],
     );
-    std::fs::write(
-        args.out.join("fcl_bench.csv"),
-        prov.csv_preamble() + &csv(&rows),
-    )?;
-    let md = markdown(&rows, &args, started.elapsed());
+    let out = &c.out.dir;
+    let csv = prov.csv_preamble() + &csv_table().csv_text(&rows);
+    std::fs::write(out.join("fcl_bench.csv"), csv)?;
+    let md = markdown(&rows, poses, started.elapsed());
     let md = md + &prov.markdown_footer();
-    std::fs::write(args.out.join("fcl_bench.md"), &md)?;
+    std::fs::write(out.join("fcl_bench.md"), &md)?;
     print!("{md}");
     Ok(())
 }
@@ -388,74 +357,188 @@ fn bench_row(
     Ok(row)
 }
 
-fn csv(rows: &[Row]) -> String {
-    let mut s = String::from(
-        "pair,eps,poses,rev_trees_median_us,rev_trees_p90_us,rev_tol0_median_us,rev_tol0_p90_us,\
-         fcl_obbrss_balanced_us,fcl_rss_balanced_us,fcl_obbrss_capped_us,fcl_rss_capped_us,\
-         best_obbrss_layout,best_rss_layout,ratio_obbrss_over_rev,ratio_rss_over_rev,ratio_obbrss_over_rev_tol0,\
-         tris_balanced,tris_capped,h_sum_balanced,h_sum_capped,rev_max_width,\
-         rev_build_ms,mesh_ms_balanced,obbrss_build_ms_balanced,rss_build_ms_balanced,mesh_ms_capped,obbrss_build_ms_capped,rss_build_ms_capped,\
-         rev_query_tree_bytes,rev_biarc_tree_bytes,obbrss_bytes_balanced,rss_bytes_balanced,obbrss_bytes_capped,rss_bytes_capped,violations,\
-         rev_trees_warm_median_us,fcl_obbrss_balanced_warm_us,fcl_obbrss_capped_warm_us,ratio_obbrss_over_rev_warm,\
-         rev_trees_blocked_median_us,fcl_obbrss_balanced_blocked_us,fcl_obbrss_capped_blocked_us,ratio_obbrss_over_rev_blocked\n",
-    );
-    for r in rows {
-        let (bo, br) = (r.fcl[r.best_obbrss].0, r.fcl[r.best_rss].1);
-        let _ = writeln!(
-            s,
-            "{},{:e},{},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{},{},{:.3},{:.3},{:.3},{},{},{:.4e},{:.4e},{:.4e},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{},{},{},{},{},{},{}",
-            r.pair,
-            r.eps,
-            r.poses,
-            r.rev_trees.0,
-            r.rev_trees.1,
-            r.rev_exact.0,
-            r.rev_exact.1,
-            r.fcl[0].0,
-            r.fcl[0].1,
-            r.fcl[1].0,
-            r.fcl[1].1,
-            LAYOUT_NAMES[r.best_obbrss],
-            LAYOUT_NAMES[r.best_rss],
-            bo / r.rev_trees.0,
-            br / r.rev_trees.0,
-            bo / r.rev_exact.0,
-            r.tris[0],
-            r.tris[1],
-            r.h_sum[0],
-            r.h_sum[1],
-            r.max_width,
-            r.rev_build_ms,
-            r.mesh_ms[0],
-            r.obbrss_build_ms[0],
-            r.rss_build_ms[0],
-            r.mesh_ms[1],
-            r.obbrss_build_ms[1],
-            r.rss_build_ms[1],
-            r.rev_bytes,
-            r.rev_tree_bytes,
-            r.obbrss_bytes[0],
-            r.rss_bytes[0],
-            r.obbrss_bytes[1],
-            r.rss_bytes[1],
-            r.violations
-        );
-        // Warm columns (appended so that existing readers keep their column indices).
-        s.pop();
-        let _ = writeln!(
-            s,
-            ",{:.2},{:.2},{:.2},{:.3},{:.2},{:.2},{:.2},{:.3}",
-            r.rev_trees_warm,
-            r.fcl_obbrss_warm[0],
-            r.fcl_obbrss_warm[1],
-            r.fcl_obbrss_warm[r.best_obbrss] / r.rev_trees_warm,
-            r.rev_trees_blocked,
-            r.fcl_obbrss_blocked[0],
-            r.fcl_obbrss_blocked[1],
-            r.fcl_obbrss_blocked[r.best_obbrss] / r.rev_trees_blocked
-        );
-    }
-    s
+/// The columns of `fcl_bench.csv` (index 0 of a per-layout field: balanced, 1: capped).
+fn csv_table() -> Table<'static, Row> {
+    let fixed = |digits: usize, f: fn(&Row) -> f64| move |r: &Row| format!("{:.*}", digits, f(r));
+    let sci4 = |f: fn(&Row) -> f64| move |r: &Row| format!("{:.4e}", f(r));
+    let count = |f: fn(&Row) -> usize| move |r: &Row| f(r).to_string();
+    Table::new()
+        .csv("pair", |r: &Row| r.pair.clone())
+        .csv("eps", |r| format!("{:e}", r.eps))
+        .csv("poses", count(|r| r.poses))
+        .csv("rev_trees_median_us", fixed(2, |r| r.rev_trees.0))
+        .csv("rev_trees_p90_us", fixed(2, |r| r.rev_trees.1))
+        .csv("rev_tol0_median_us", fixed(2, |r| r.rev_exact.0))
+        .csv("rev_tol0_p90_us", fixed(2, |r| r.rev_exact.1))
+        .csv("fcl_obbrss_balanced_us", fixed(2, |r| r.fcl[0].0))
+        .csv("fcl_rss_balanced_us", fixed(2, |r| r.fcl[0].1))
+        .csv("fcl_obbrss_capped_us", fixed(2, |r| r.fcl[1].0))
+        .csv("fcl_rss_capped_us", fixed(2, |r| r.fcl[1].1))
+        .csv("best_obbrss_layout", |r| LAYOUT_NAMES[r.best_obbrss].into())
+        .csv("best_rss_layout", |r| LAYOUT_NAMES[r.best_rss].into())
+        .csv(
+            "ratio_obbrss_over_rev",
+            fixed(3, |r| r.best_obbrss_us() / r.rev_trees.0),
+        )
+        .csv(
+            "ratio_rss_over_rev",
+            fixed(3, |r| r.best_rss_us() / r.rev_trees.0),
+        )
+        .csv(
+            "ratio_obbrss_over_rev_tol0",
+            fixed(3, |r| r.best_obbrss_us() / r.rev_exact.0),
+        )
+        .csv("tris_balanced", count(|r| r.tris[0]))
+        .csv("tris_capped", count(|r| r.tris[1]))
+        .csv("h_sum_balanced", sci4(|r| r.h_sum[0]))
+        .csv("h_sum_capped", sci4(|r| r.h_sum[1]))
+        .csv("rev_max_width", sci4(|r| r.max_width))
+        .csv("rev_build_ms", fixed(3, |r| r.rev_build_ms))
+        .csv("mesh_ms_balanced", fixed(3, |r| r.mesh_ms[0]))
+        .csv(
+            "obbrss_build_ms_balanced",
+            fixed(3, |r| r.obbrss_build_ms[0]),
+        )
+        .csv("rss_build_ms_balanced", fixed(3, |r| r.rss_build_ms[0]))
+        .csv("mesh_ms_capped", fixed(3, |r| r.mesh_ms[1]))
+        .csv("obbrss_build_ms_capped", fixed(3, |r| r.obbrss_build_ms[1]))
+        .csv("rss_build_ms_capped", fixed(3, |r| r.rss_build_ms[1]))
+        .csv("rev_query_tree_bytes", count(|r| r.rev_bytes))
+        .csv("rev_biarc_tree_bytes", count(|r| r.rev_tree_bytes))
+        .csv("obbrss_bytes_balanced", count(|r| r.obbrss_bytes[0]))
+        .csv("rss_bytes_balanced", count(|r| r.rss_bytes[0]))
+        .csv("obbrss_bytes_capped", count(|r| r.obbrss_bytes[1]))
+        .csv("rss_bytes_capped", count(|r| r.rss_bytes[1]))
+        .csv("violations", count(|r| r.violations))
+        // Warm and blocked columns come last, so that older readers keep their indices.
+        .csv("rev_trees_warm_median_us", fixed(2, |r| r.rev_trees_warm))
+        .csv(
+            "fcl_obbrss_balanced_warm_us",
+            fixed(2, |r| r.fcl_obbrss_warm[0]),
+        )
+        .csv(
+            "fcl_obbrss_capped_warm_us",
+            fixed(2, |r| r.fcl_obbrss_warm[1]),
+        )
+        .csv("ratio_obbrss_over_rev_warm", fixed(3, Row::warm_ratio))
+        .csv(
+            "rev_trees_blocked_median_us",
+            fixed(2, |r| r.rev_trees_blocked),
+        )
+        .csv(
+            "fcl_obbrss_balanced_blocked_us",
+            fixed(2, |r| r.fcl_obbrss_blocked[0]),
+        )
+        .csv(
+            "fcl_obbrss_capped_blocked_us",
+            fixed(2, |r| r.fcl_obbrss_blocked[1]),
+        )
+        .csv(
+            "ratio_obbrss_over_rev_blocked",
+            fixed(3, Row::blocked_ratio),
+        )
+}
+
+/// The `pair` and `eps` columns that open every Markdown table.
+fn pair_and_eps() -> Table<'static, Row> {
+    Table::new()
+        .markdown("pair", |r: &Row| r.pair.clone())
+        .markdown("eps", |r| format!("{:.0e}", r.eps))
+}
+
+/// The main Markdown table: cold medians, the faster layout per FCL column.
+fn cold_table() -> Table<'static, Row> {
+    pair_and_eps()
+        .markdown("triangles A+B", |r| r.tris[r.best_obbrss].to_string())
+        .right()
+        .markdown("revdist median / p90 us", |r| {
+            format!("{:.1} / {:.1}", r.rev_trees.0, r.rev_trees.1)
+        })
+        .right()
+        .markdown("revdist tol 0, traversal, median us", |r| {
+            format!("{:.1}", r.rev_exact.0)
+        })
+        .right()
+        .markdown("FCL OBBRSS median us", |r| {
+            format!(
+                "{:.1} ({})",
+                r.best_obbrss_us(),
+                LAYOUT_NAMES[r.best_obbrss]
+            )
+        })
+        .right()
+        .markdown("FCL RSS median us", |r| {
+            format!("{:.1} ({})", r.best_rss_us(), LAYOUT_NAMES[r.best_rss])
+        })
+        .right()
+        .markdown("ratio OBBRSS / revdist", |r| {
+            format!("{:.2}", r.best_obbrss_us() / r.rev_trees.0)
+        })
+        .right()
+        .markdown("build revdist / mesh+OBBRSS ms", |r| {
+            let o = r.best_obbrss;
+            let fcl = r.mesh_ms[o] + r.obbrss_build_ms[o];
+            format!("{:.2} / {fcl:.1}", r.rev_build_ms)
+        })
+        .right()
+        .markdown("memory revdist / OBBRSS / RSS", |r| {
+            let rev = human_bytes(r.rev_bytes as f64);
+            let obbrss = human_bytes(r.obbrss_bytes[r.best_obbrss] as f64);
+            format!(
+                "{rev} / {obbrss} / {}",
+                human_bytes(r.rss_bytes[r.best_rss] as f64)
+            )
+        })
+        .right()
+        .markdown("max width / h_a+h_b", |r| {
+            format!("{:.2e} / {:.2e}", r.max_width, r.h_sum[r.best_obbrss])
+        })
+        .right()
+        .markdown("violations", |r| r.violations.to_string())
+        .right()
+}
+
+/// Blocked and warm medians, FCL OBBRSS in the layout of the main table.
+fn blocked_warm_table() -> Table<'static, Row> {
+    let us = |f: fn(&Row) -> f64| move |r: &Row| format!("{:.1}", f(r));
+    let ratio = |f: fn(&Row) -> f64| move |r: &Row| format!("{:.2}", f(r));
+    pair_and_eps()
+        .markdown("revdist blocked", us(|r| r.rev_trees_blocked))
+        .right()
+        .markdown("FCL blocked", us(|r| r.fcl_obbrss_blocked[r.best_obbrss]))
+        .right()
+        .markdown("ratio blocked", ratio(Row::blocked_ratio))
+        .right()
+        .markdown("revdist warm", us(|r| r.rev_trees_warm))
+        .right()
+        .markdown("FCL warm", us(|r| r.fcl_obbrss_warm[r.best_obbrss]))
+        .right()
+        .markdown("ratio warm", ratio(Row::warm_ratio))
+        .right()
+        .markdown(
+            "cold / blocked revdist",
+            ratio(|r| r.rev_trees.0 / r.rev_trees_blocked),
+        )
+        .right()
+        .markdown(
+            "cold / blocked FCL",
+            ratio(|r| r.best_obbrss_us() / r.fcl_obbrss_blocked[r.best_obbrss]),
+        )
+        .right()
+}
+
+/// FCL's medians in every layout.
+fn layouts_table() -> Table<'static, Row> {
+    let layout = |l: usize| move |r: &Row| format!("{:.1} / {:.1}", r.fcl[l].0, r.fcl[l].1);
+    pair_and_eps()
+        .markdown("balanced OBBRSS / RSS", layout(0))
+        .right()
+        .markdown("tris", |r| r.tris[0].to_string())
+        .right()
+        .markdown("capped OBBRSS / RSS", layout(1))
+        .right()
+        .markdown("tris", |r| r.tris[1].to_string())
+        .right()
 }
 
 fn machine() -> String {
@@ -482,7 +565,8 @@ fn git_commit() -> String {
         .unwrap_or_else(|| "unknown".into())
 }
 
-fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
+/// `poses`: per pair at eps >= 5e-5 and below.
+fn markdown(rows: &[Row], poses: (usize, usize), wall: Duration) -> String {
     let mut s = String::from("# revdist vs FCL 0.7 at equal accuracy\n\n");
     let _ = writeln!(
         s,
@@ -490,8 +574,8 @@ fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
          poses of the same sequence), gaps log-uniform in [{:e}, {:e}], seeded; wall time {:.0} s.\n",
         machine(),
         git_commit(),
-        args.poses,
-        args.poses_fine,
+        poses.0,
+        poses.1,
         GAPS.0,
         GAPS.1,
         wall.as_secs_f64()
@@ -511,61 +595,13 @@ fn markdown(rows: &[Row], args: &Args, wall: Duration) -> String {
          second table runs each method *blocked* (alone over all poses in a row, the usual \
          benchmark loop) and *warm* (each query repeated at once on the same pose).\n\n",
     );
-    s.push_str("| pair | eps | triangles A+B | revdist median / p90 us | revdist tol 0, traversal, median us | FCL OBBRSS median us | FCL RSS median us | ratio OBBRSS / revdist | build revdist / mesh+OBBRSS ms | memory revdist / OBBRSS / RSS | max width / h_a+h_b | violations |\n");
+    s.push_str(&cold_table().markdown_text(rows));
     s.push_str(
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        "\nBlocked (each method alone over all poses in a row) and warm (each query repeated at \
+         once on the same pose); FCL OBBRSS in the layout of the first table; medians, us:\n\n",
     );
-    for r in rows {
-        let (o, rs) = (r.best_obbrss, r.best_rss);
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {} | {:.1} / {:.1} | {:.1} | {:.1} ({}) | {:.1} ({}) | {:.2} | {:.2} / {:.1} | {} / {} / {} | {:.2e} / {:.2e} | {} |",
-            r.pair,
-            r.eps,
-            r.tris[o],
-            r.rev_trees.0,
-            r.rev_trees.1,
-            r.rev_exact.0,
-            r.fcl[o].0,
-            LAYOUT_NAMES[o],
-            r.fcl[rs].1,
-            LAYOUT_NAMES[rs],
-            r.fcl[o].0 / r.rev_trees.0,
-            r.rev_build_ms,
-            r.mesh_ms[o] + r.obbrss_build_ms[o],
-            human_bytes(r.rev_bytes as f64),
-            human_bytes(r.obbrss_bytes[o] as f64),
-            human_bytes(r.rss_bytes[rs] as f64),
-            r.max_width,
-            r.h_sum[o],
-            r.violations
-        );
-    }
-    s.push_str("\nBlocked (each method alone over all poses in a row) and warm (each query repeated at once on the same pose); FCL OBBRSS in the layout of the first table; medians, us:\n\n| pair | eps | revdist blocked | FCL blocked | ratio blocked | revdist warm | FCL warm | ratio warm | cold / blocked revdist | cold / blocked FCL |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-    for r in rows {
-        let o = r.best_obbrss;
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {:.1} | {:.1} | {:.2} | {:.1} | {:.1} | {:.2} | {:.2} | {:.2} |",
-            r.pair,
-            r.eps,
-            r.rev_trees_blocked,
-            r.fcl_obbrss_blocked[o],
-            r.fcl_obbrss_blocked[o] / r.rev_trees_blocked,
-            r.rev_trees_warm,
-            r.fcl_obbrss_warm[o],
-            r.fcl_obbrss_warm[o] / r.rev_trees_warm,
-            r.rev_trees.0 / r.rev_trees_blocked,
-            r.fcl[o].0 / r.fcl_obbrss_blocked[o]
-        );
-    }
-    s.push_str("\nAll layouts (FCL medians, us; triangles):\n\n| pair | eps | balanced OBBRSS / RSS | tris | capped OBBRSS / RSS | tris |\n| --- | --- | ---: | ---: | ---: | ---: |\n");
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {:.1} / {:.1} | {} | {:.1} / {:.1} | {} |",
-            r.pair, r.eps, r.fcl[0].0, r.fcl[0].1, r.tris[0], r.fcl[1].0, r.fcl[1].1, r.tris[1]
-        );
-    }
+    s.push_str(&blocked_warm_table().markdown_text(rows));
+    s.push_str("\nAll layouts (FCL medians, us; triangles):\n\n");
+    s.push_str(&layouts_table().markdown_text(rows));
     s
 }

@@ -17,18 +17,22 @@
 //! (`verify::crosscheck::criterion`); violations are reported and fail the run.
 //!
 //! Usage: `motion [--frames N] [--frames-1e-5 N] [--eps E,...] [--pairs a-b,...] [--paper]
-//! [--out DIR]`. Writes `motion.csv`, `motion.md` and `motion_eps{E}.svg` (default `figures`).
+//! [--seed S] [--out DIR]`. Writes `motion.csv`, `motion.md` and `motion_eps{E}.svg` (default `figures`).
 
-use experiments::args;
+use clap::Parser;
+use experiments::args::ModelPair;
 use experiments::baseline_mesh::{
     agrees_with_fcl, certified_mesh, obbrss_of, EDGE_CAP_REL, LAYOUT_NAMES,
 };
+use experiments::cli::{count_at, Eps, Frames, Out, Pairs, Paper, Seed};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, grouped_bars_coloured, BarSeries};
 use experiments::poses::{pair_seed, SmoothMotion};
 use experiments::progress;
 use experiments::provenance::Provenance;
 use experiments::shapes::{diagonal, paper_pairs, PAPER_EPS};
 use experiments::stats::{mean, median, time_each, us};
+use experiments::table::Table;
 use nalgebra::Isometry3;
 use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};
@@ -36,7 +40,6 @@ use revdist::solid::Solid;
 use revdist::tessellate::CertifiedMesh;
 use std::collections::HashMap;
 use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 use verify::baselines::fcl::FclMesh;
@@ -53,57 +56,29 @@ const GAPS: (f64, f64) = (1e-3, 3e-1);
 const KEYS_PER_1000_FRAMES: usize = 8;
 /// Gap oscillations per 1,000 frames.
 const GAP_PERIODS_PER_1000_FRAMES: f64 = 5.0;
-/// Seed of the motions (xor a hash of the pair name).
+/// Default seed of the motions (xor a hash of the pair name).
 const SEED: u64 = 0xf16_0012;
 
+/// The paper's 15 model pairs in continuous motion (Figure 12): per pair and eps, the mean
+/// query time of revdist (default tolerance, warm-started from the previous frame) against
+/// FCL 0.7 OBBRSS on certified meshes of the same eps, over a smooth seeded rigid motion
+/// that often comes close; methods interleaved per frame and also run blocked, every revdist
+/// answer cross-checked against FCL's. Writes motion.csv, motion.md and motion_eps{E}.svg
+/// (200 frames per pair, 100 below eps 5e-5; 50,000 with --paper).
+#[derive(Parser)]
 struct Args {
-    frames: usize,
-    frames_fine: usize,
-    eps: Vec<f64>,
-    pairs: Vec<(String, String)>,
-    out: PathBuf,
-}
-
-fn parse_args() -> Result<Args, String> {
-    let argv: Vec<String> = std::env::args().skip(1).collect();
-    let mut a = Args {
-        frames: DEFAULT_FRAMES,
-        frames_fine: DEFAULT_FRAMES_FINE,
-        eps: PAPER_EPS.to_vec(),
-        pairs: paper_pairs()
-            .into_iter()
-            .map(|(x, y)| (x.to_string(), y.to_string()))
-            .collect(),
-        out: PathBuf::from("figures"),
-    };
-    let mut i = 0;
-    while i < argv.len() {
-        match argv[i].as_str() {
-            "--frames" => a.frames = args::count(&args::value(&argv, i)?, "--frames")?,
-            "--frames-1e-5" => {
-                a.frames_fine = args::count(&args::value(&argv, i)?, "--frames-1e-5")?
-            }
-            "--eps" => a.eps = args::eps_list(&args::value(&argv, i)?, "--eps")?,
-            "--pairs" => a.pairs = args::pairs(&args::value(&argv, i)?, "--pairs")?,
-            "--out" => a.out = PathBuf::from(args::value(&argv, i)?),
-            "--paper" => {
-                a.frames = PAPER_FRAMES;
-                a.frames_fine = PAPER_FRAMES;
-                i += 1;
-                continue;
-            }
-            "-h" | "--help" => {
-                println!(
-                    "usage: motion [--frames N] [--frames-1e-5 N] [--eps E,...] [--pairs a-b,...] [--paper] [--out DIR]"
-                );
-                std::process::exit(0);
-            }
-            o => return Err(format!("unknown argument '{o}' (try --help)")),
-        }
-        i += 2;
-    }
-    a.frames_fine = a.frames_fine.min(a.frames);
-    Ok(a)
+    #[command(flatten)]
+    out: Out,
+    #[command(flatten)]
+    eps: Eps,
+    #[command(flatten)]
+    pairs: Pairs,
+    #[command(flatten)]
+    frames: Frames,
+    #[command(flatten)]
+    paper: Paper,
+    #[command(flatten)]
+    seed: Seed,
 }
 
 /// FCL's structures of one shape at one eps: both layouts' certified meshes and OBBRSS.
@@ -150,36 +125,45 @@ impl Row {
     fn fcl_mean(&self) -> f64 {
         mean(&self.fcl_us[self.best])
     }
+    fn fcl_median(&self) -> f64 {
+        median(&self.fcl_us[self.best])
+    }
     fn ratio(&self) -> f64 {
         self.fcl_mean() / mean(&self.rev_us)
+    }
+    fn blocked_ratio(&self) -> f64 {
+        self.fcl_blocked_mean / self.rev_blocked_mean
     }
 }
 
 fn main() {
-    if let Err(e) = run() {
-        eprintln!("error: {e}");
-        std::process::exit(2);
-    }
+    driver::run(run)
 }
 
-fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let args = parse_args()?;
+fn run(args: Args) -> DriverResult {
+    let eps_list = args.eps.or(&PAPER_EPS);
+    let paper_pairs: Vec<ModelPair> = paper_pairs()
+        .into_iter()
+        .map(|(a, b)| (a.to_owned(), b.to_owned()))
+        .collect();
+    let pairs = args.pairs.or(&paper_pairs);
+    let (frames, frames_fine) = args.frames.or(args.paper.pick(
+        (DEFAULT_FRAMES, DEFAULT_FRAMES_FINE),
+        (PAPER_FRAMES, PAPER_FRAMES),
+    ));
+    // The fine eps run the motion's first frames.
+    let frames = (frames, frames_fine.min(frames));
+    let seed = args.seed.or(SEED);
     let started = Instant::now();
-    let frames_at = |eps: f64| {
-        if eps < 5e-5 {
-            args.frames_fine
-        } else {
-            args.frames
-        }
-    };
-    let keys = (KEYS_PER_1000_FRAMES * args.frames / 1000).max(4);
-    let periods = (GAP_PERIODS_PER_1000_FRAMES * args.frames as f64 / 1000.0).max(1.0);
+    let frames_at = |eps: f64| count_at(eps, frames);
+    let keys = (KEYS_PER_1000_FRAMES * frames.0 / 1000).max(4);
+    let periods = (GAP_PERIODS_PER_1000_FRAMES * frames.0 as f64 / 1000.0).max(1.0);
     let prov = Provenance::collect(
         "motion (paper Figure 12: 15 pairs in continuous motion)",
         &[
-            ("frames", args.frames.to_string()),
-            ("frames_eps_below_5e-5", args.frames_fine.to_string()),
-            ("eps", format!("{:?}", args.eps)),
+            ("frames", frames.0.to_string()),
+            ("frames_eps_below_5e-5", frames.1.to_string()),
+            ("eps", format!("{eps_list:?}")),
             ("gaps", format!("{GAPS:?}")),
             ("keyframes", keys.to_string()),
             ("gap_periods", format!("{periods}")),
@@ -191,11 +175,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
                 "fcl",
                 "OBBRSS on certified meshes, faster of two layouts".into(),
             ),
-            ("seed", format!("{SEED:#x}")),
+            ("seed", format!("{seed:#x}")),
         ],
     );
     let mut profiles: HashMap<String, Arc<Profile>> = HashMap::new();
-    for (a, b) in &args.pairs {
+    for (a, b) in &pairs {
         for n in [a, b] {
             if !profiles.contains_key(n) {
                 profiles.insert(n.clone(), Arc::new(experiments::shapes::profile(n)?));
@@ -204,18 +188,18 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     // 1. Motions, placed before any timing.
-    let bar = progress::bar((args.pairs.len() * args.frames) as u64, "motion: place");
+    let bar = progress::bar((pairs.len() * frames.0) as u64, "motion: place");
     let mut motions: Vec<Vec<Isometry3<f64>>> = Vec::new();
-    for (a, b) in &args.pairs {
+    for (a, b) in &pairs {
         let name = format!("{a}-{b}");
-        let m = SmoothMotion::new(pair_seed(SEED, &name), keys, GAPS, periods);
-        motions.push(m.poses(&profiles[a], &profiles[b], args.frames, || bar.inc(1))?);
+        let m = SmoothMotion::new(pair_seed(seed, &name), keys, GAPS, periods);
+        motions.push(m.poses(&profiles[a], &profiles[b], frames.0, || bar.inc(1))?);
     }
     bar.finish_and_clear();
 
     // 2. Per eps: structures once per shape, then every pair's motion, methods interleaved.
     let mut rows = Vec::new();
-    for &eps in &args.eps {
+    for &eps in &eps_list {
         let n = frames_at(eps);
         let bar = progress::bar(profiles.len() as u64, &format!("meshes {eps:.0e}"));
         let mut solids: HashMap<String, Solid> = HashMap::new();
@@ -226,8 +210,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             bar.inc(1);
         }
         bar.finish_and_clear();
-        let bar = progress::bar((args.pairs.len() * n) as u64, &format!("motion {eps:.0e}"));
-        for ((a, b), poses) in args.pairs.iter().zip(&motions) {
+        let bar = progress::bar((pairs.len() * n) as u64, &format!("motion {eps:.0e}"));
+        for ((a, b), poses) in pairs.iter().zip(&motions) {
             let (sa, sb) = (&solids[a], &solids[b]);
             let (fa, fb) = (&fcl[a], &fcl[b]);
             let size = diagonal(&profiles[a]) + diagonal(&profiles[b]);
@@ -325,61 +309,89 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         bar.finish_and_clear();
         eprintln!(
             "motion eps {eps:.0e}: {} pairs, {n} frames each [{:.0} s]",
-            args.pairs.len(),
+            pairs.len(),
             started.elapsed().as_secs_f64()
         );
     }
 
-    std::fs::create_dir_all(&args.out)?;
-    std::fs::write(args.out.join("motion.csv"), csv(&rows, &prov))?;
+    let out = &args.out.dir;
+    let csv = prov.csv_preamble() + &motion_table().csv_text(&rows);
+    std::fs::write(out.join("motion.csv"), csv)?;
     let md = markdown(&rows, &prov, started.elapsed().as_secs_f64());
-    std::fs::write(args.out.join("motion.md"), &md)?;
-    for &eps in &args.eps {
-        draw(&args.out, &rows, eps)?;
+    std::fs::write(out.join("motion.md"), &md)?;
+    for &eps in &eps_list {
+        draw(out, &rows, eps)?;
     }
     print!("{md}");
-    let violations: usize = rows.iter().map(|r| r.violations).sum();
-    if violations > 0 {
-        return Err(format!("{violations} cross-check violations (see above)").into());
-    }
-    Ok(())
+    let violations = rows.iter().map(|r| r.violations).sum();
+    driver::check_violations(violations, "(see above)")
 }
 
-fn csv(rows: &[Row], prov: &Provenance) -> String {
-    let mut s = prov.csv_preamble();
-    s.push_str("pair,eps,frames,revdist_mean_us,revdist_median_us,fcl_obbrss_balanced_mean_us,fcl_obbrss_capped_mean_us,best_layout,fcl_best_mean_us,fcl_best_median_us,ratio_fcl_over_revdist_mean,triangles_best,mean_node_pairs,mean_leaf_tests,min_distance,violations,revdist_blocked_mean_us,fcl_best_blocked_mean_us,ratio_blocked\n");
-    for r in rows {
-        let lay = |l: usize| {
+/// The columns of `motion.csv` and of the table in `motion.md`.
+fn motion_table() -> Table<'static, Row> {
+    let layout_mean = |l: usize| {
+        move |r: &Row| {
             r.fcl_us
                 .get(l)
                 .map(|v| format!("{:.2}", mean(v)))
                 .unwrap_or_default()
-        };
-        let _ = writeln!(
-            s,
-            "{},{:e},{},{:.2},{:.2},{},{},{},{:.2},{:.2},{:.3},{},{:.1},{:.1},{:.3e},{},{:.2},{:.2},{:.3}",
-            r.pair,
-            r.eps,
-            r.frames,
-            mean(&r.rev_us),
-            median(&r.rev_us),
-            lay(0),
-            lay(1),
-            LAYOUT_NAMES[r.best],
-            r.fcl_mean(),
-            median(&r.fcl_us[r.best]),
-            r.ratio(),
-            r.triangles[r.best],
-            r.node_pairs,
-            r.exact_leaves,
-            r.min_gap,
-            r.violations,
-            r.rev_blocked_mean,
-            r.fcl_blocked_mean,
-            r.fcl_blocked_mean / r.rev_blocked_mean
-        );
-    }
-    s
+        }
+    };
+    Table::new()
+        .csv("pair", |r: &Row| r.pair.clone())
+        .with_markdown_header("pair")
+        .csv("eps", |r| format!("{:e}", r.eps))
+        .with_markdown("eps", |r| format!("{:.0e}", r.eps))
+        .csv("frames", |r| r.frames.to_string())
+        .with_markdown_header("frames")
+        .right()
+        .csv("revdist_mean_us", |r| format!("{:.2}", mean(&r.rev_us)))
+        .csv("revdist_median_us", |r| format!("{:.2}", median(&r.rev_us)))
+        .markdown("revdist mean / median (us)", |r| {
+            format!("{:.0} / {:.0}", mean(&r.rev_us), median(&r.rev_us))
+        })
+        .right()
+        .csv("fcl_obbrss_balanced_mean_us", layout_mean(0))
+        .csv("fcl_obbrss_capped_mean_us", layout_mean(1))
+        .csv("best_layout", |r| LAYOUT_NAMES[r.best].to_owned())
+        .csv("fcl_best_mean_us", |r| format!("{:.2}", r.fcl_mean()))
+        .csv("fcl_best_median_us", |r| format!("{:.2}", r.fcl_median()))
+        .markdown("FCL OBBRSS mean / median (us)", |r| {
+            format!("{:.0} / {:.0}", r.fcl_mean(), r.fcl_median())
+        })
+        .right()
+        .markdown("layout", |r| LAYOUT_NAMES[r.best].to_owned())
+        .csv("ratio_fcl_over_revdist_mean", |r| {
+            format!("{:.3}", r.ratio())
+        })
+        .with_markdown("ratio", |r| format!("{:.2}x", r.ratio()))
+        .right()
+        .markdown("blocked revdist / FCL mean (us)", |r| {
+            format!("{:.0} / {:.0}", r.rev_blocked_mean, r.fcl_blocked_mean)
+        })
+        .right()
+        .markdown("blocked ratio", |r| format!("{:.2}x", r.blocked_ratio()))
+        .right()
+        .csv("triangles_best", |r| r.triangles[r.best].to_string())
+        .with_markdown_header("triangles A+B")
+        .right()
+        .csv("mean_node_pairs", |r| format!("{:.1}", r.node_pairs))
+        .with_markdown("node pairs", |r| format!("{:.0}", r.node_pairs))
+        .right()
+        .csv("mean_leaf_tests", |r| format!("{:.1}", r.exact_leaves))
+        .with_markdown_header("leaf tests")
+        .right()
+        .csv("min_distance", |r| format!("{:.3e}", r.min_gap))
+        .csv("violations", |r| r.violations.to_string())
+        .with_markdown_header("violations")
+        .right()
+        .csv("revdist_blocked_mean_us", |r| {
+            format!("{:.2}", r.rev_blocked_mean)
+        })
+        .csv("fcl_best_blocked_mean_us", |r| {
+            format!("{:.2}", r.fcl_blocked_mean)
+        })
+        .csv("ratio_blocked", |r| format!("{:.3}", r.blocked_ratio()))
 }
 
 fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
@@ -402,29 +414,7 @@ fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
     for &e in &eps_list {
         let _ = writeln!(s, "![eps {e:.0e}](motion_eps{e:.0e}.svg)\n");
     }
-    s.push_str("| pair | eps | frames | revdist mean / median (us) | FCL OBBRSS mean / median (us) | layout | ratio | blocked revdist / FCL mean (us) | blocked ratio | triangles A+B | node pairs | leaf tests | violations |\n| --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "| {} | {:.0e} | {} | {:.0} / {:.0} | {:.0} / {:.0} | {} | {:.2}x | {:.0} / {:.0} | {:.2}x | {} | {:.0} | {:.1} | {} |",
-            r.pair,
-            r.eps,
-            r.frames,
-            mean(&r.rev_us),
-            median(&r.rev_us),
-            r.fcl_mean(),
-            median(&r.fcl_us[r.best]),
-            LAYOUT_NAMES[r.best],
-            r.ratio(),
-            r.rev_blocked_mean,
-            r.fcl_blocked_mean,
-            r.fcl_blocked_mean / r.rev_blocked_mean,
-            r.triangles[r.best],
-            r.node_pairs,
-            r.exact_leaves,
-            r.violations
-        );
-    }
+    s.push_str(&motion_table().markdown_text(rows));
     s.push('\n');
     for &e in &eps_list {
         let sel: Vec<&Row> = rows.iter().filter(|r| r.eps == e).collect();
@@ -434,10 +424,7 @@ fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
             .filter(|r| r.ratio() < 1.0)
             .map(|r| r.pair.as_str())
             .collect();
-        let blocked: Vec<f64> = sel
-            .iter()
-            .map(|r| r.fcl_blocked_mean / r.rev_blocked_mean)
-            .collect();
+        let blocked: Vec<f64> = sel.iter().map(|r| r.blocked_ratio()).collect();
         let _ = writeln!(
             s,
             "- eps {e:.0e}, blocked: speed-up {:.2}x to {:.2}x (median {:.2}x).",

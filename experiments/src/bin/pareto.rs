@@ -29,20 +29,24 @@
 //! 200 poses per pair (`--paper`: 1000), pairs pawn-cup, table-lightmill, torus-torus, a cap of
 //! 2M predicted triangles (the coarsest FCL level is always built). About a minute on 2 cores.
 
-use experiments::args;
+use clap::Parser;
+use experiments::args::{accuracy, model_pairs, positive_count, ModelPair};
 use experiments::baseline_mesh::{agrees_with_fcl, Layout, LAYOUT_NAMES};
+use experiments::cli::{given_or, Common};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{log_log_panels, Curve, Panel};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::progress::bar;
 use experiments::provenance::Provenance;
 use experiments::shapes::{diagonal, profile, query_tree_bytes};
 use experiments::stats::{human_bytes, log_log_slope, median, quantile, us};
+use experiments::table::Table;
 use nalgebra::Isometry3;
 use revdist::profile::Profile;
 use revdist::query::{distance, Distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 use verify::baselines::fcl::FclMesh;
@@ -122,62 +126,56 @@ impl Method {
     }
 }
 
+/// What accuracy costs: on the same seeded poses near contact, per model pair, query time,
+/// build time and memory against the certified error bound, for revdist at eps 1e-2 .. 1e-8
+/// (default tolerance, tolerance 0, and refined) and for FCL 0.7 OBBRSS and RSS on certified
+/// meshes at eps 1e-2 .. 1e-6 (up to a cap on the predicted triangle count); every revdist
+/// answer is cross-checked against every FCL answer of the same pose. Writes pareto.csv,
+/// pareto.md and pareto_{time,build,memory}.svg (200 poses per pair; 1,000 with --paper).
+#[derive(Parser)]
 struct Args {
+    #[command(flatten)]
+    common: Common,
+    /// Accuracies of the refined revdist mode, in (0, 1) [default: 1e-2,1e-4,1e-6]
+    #[arg(long, value_name = "E,...", value_delimiter = ',', value_parser = accuracy)]
+    refine_eps: Vec<f64>,
+    /// FCL's mesh accuracies, in (0, 1) [default: 1e-2,1e-3,1e-4,1e-5,1e-6]
+    #[arg(long, value_name = "E,...", value_delimiter = ',', value_parser = accuracy)]
+    fcl_eps: Vec<f64>,
+    /// Largest predicted triangle count FCL is run at [default: 2000000]
+    #[arg(long, value_name = "N", value_parser = positive_count)]
+    max_triangles: Option<usize>,
+}
+
+/// What a run measures: the arguments with the defaults filled in.
+struct Settings {
     poses: usize,
-    pairs: Vec<(String, String)>,
-    out: PathBuf,
+    pairs: Vec<ModelPair>,
+    seed: u64,
     rev_eps: Vec<f64>,
     refine_eps: Vec<f64>,
     fcl_eps: Vec<f64>,
     max_triangles: usize,
 }
 
-const USAGE: &str = "usage: pareto [--poses N] [--pairs a-b,...] [--paper] [--out DIR] \
-                     [--eps E,...] [--refine-eps E,...] [--fcl-eps E,...] [--max-triangles N]";
-
-fn parse_args() -> Result<Args, String> {
-    let argv: Vec<String> = std::env::args().skip(1).collect();
-    let mut a = Args {
-        poses: DEFAULT_POSES,
-        pairs: args::pairs(DEFAULT_PAIRS, "--pairs")?,
-        out: PathBuf::from("figures"),
-        rev_eps: REV_EPS.to_vec(),
-        refine_eps: REFINE_EPS.to_vec(),
-        fcl_eps: FCL_EPS.to_vec(),
-        max_triangles: MAX_TRIANGLES,
-    };
-    let (mut poses, mut paper) = (None, false);
-    let mut i = 0;
-    while i < argv.len() {
-        let flag = argv[i].as_str();
-        if flag == "--paper" {
-            paper = true;
-            i += 1;
-            continue;
+impl Settings {
+    fn new(args: &Args) -> Settings {
+        let c = &args.common;
+        let mut s = Settings {
+            poses: c.poses.or(c.paper.pick(DEFAULT_POSES, PAPER_POSES)),
+            pairs: c.pairs.or(&model_pairs(DEFAULT_PAIRS)),
+            seed: c.seed.or(CLOSE_SEED),
+            rev_eps: c.eps.or(&REV_EPS),
+            refine_eps: given_or(&args.refine_eps, &REFINE_EPS),
+            fcl_eps: given_or(&args.fcl_eps, &FCL_EPS),
+            max_triangles: args.max_triangles.unwrap_or(MAX_TRIANGLES),
+        };
+        for list in [&mut s.rev_eps, &mut s.refine_eps, &mut s.fcl_eps] {
+            list.sort_by(|x, y| y.total_cmp(x));
+            list.dedup();
         }
-        if flag == "-h" || flag == "--help" {
-            println!("{USAGE}");
-            std::process::exit(0);
-        }
-        let v = || args::value(&argv, i);
-        match flag {
-            "--poses" => poses = Some(args::count(&v()?, flag)?),
-            "--pairs" => a.pairs = args::pairs(&v()?, flag)?,
-            "--out" => a.out = PathBuf::from(v()?),
-            "--eps" => a.rev_eps = args::eps_list(&v()?, flag)?,
-            "--refine-eps" => a.refine_eps = args::eps_list(&v()?, flag)?,
-            "--fcl-eps" => a.fcl_eps = args::eps_list(&v()?, flag)?,
-            "--max-triangles" => a.max_triangles = args::count(&v()?, flag)?,
-            o => return Err(format!("unknown argument '{o}'\n{USAGE}")),
-        }
-        i += 2;
+        s
     }
-    a.poses = poses.unwrap_or(if paper { PAPER_POSES } else { DEFAULT_POSES });
-    for list in [&mut a.rev_eps, &mut a.refine_eps, &mut a.fcl_eps] {
-        list.sort_by(|x, y| y.total_cmp(x));
-        list.dedup();
-    }
-    Ok(a)
 }
 
 /// One row of the table: one method at one eps on one pair.
@@ -344,21 +342,12 @@ struct PairResult {
 }
 
 fn main() {
-    match run() {
-        Ok(0) => {}
-        Ok(v) => {
-            eprintln!("error: {v} cross-check violations (revdist's interval missed FCL's); see pareto.md");
-            std::process::exit(1);
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            std::process::exit(2);
-        }
-    }
+    driver::run(run)
 }
 
-fn run() -> Result<usize, Box<dyn std::error::Error>> {
-    let args = parse_args()?;
+fn run(cli: Args) -> DriverResult {
+    let args = Settings::new(&cli);
+    let out = &cli.common.out.dir;
     // Check the model names before any work.
     for (a, b) in &args.pairs {
         profile(a)?;
@@ -375,7 +364,7 @@ fn run() -> Result<usize, Box<dyn std::error::Error>> {
                 "gaps",
                 format!("log-uniform [{:e}, {:e}]", CLOSE_GAPS.0, CLOSE_GAPS.1),
             ),
-            ("seed", format!("{CLOSE_SEED:#x} xor hash(pair)")),
+            ("seed", format!("{:#x} xor hash(pair)", args.seed)),
             ("revdist_eps", eps_text(&args.rev_eps)),
             ("refine_eps", eps_text(&args.refine_eps)),
             ("fcl_eps", eps_text(&args.fcl_eps)),
@@ -392,18 +381,21 @@ fn run() -> Result<usize, Box<dyn std::error::Error>> {
     }
     let wall = started.elapsed().as_secs_f64();
     let load = format!("{load_start} / {}", load_average());
-    std::fs::create_dir_all(&args.out)?;
-    std::fs::write(args.out.join("pareto.csv"), csv(&rows, &prov, &load))?;
+    let mut csv = prov.csv_preamble();
+    let _ = writeln!(csv, "# load_average_1min_start_end: {load}");
+    csv.push_str(&cost_table().csv_text(&rows));
+    std::fs::write(out.join("pareto.csv"), csv)?;
     let md = markdown(&rows, &skipped, &args, &prov, (wall, &load));
-    std::fs::write(args.out.join("pareto.md"), &md)?;
-    figures(&args.out, &rows, &args)?;
+    std::fs::write(out.join("pareto.md"), &md)?;
+    figures(out, &rows, &args)?;
     let (checks, violations) = cross_checks(&rows);
     eprintln!(
         "wrote pareto.{{csv,md}} and pareto_{{time,build,memory}}.svg to {} ({} rows, {checks} cross-checks, {violations} violations, {wall:.0} s)",
-        args.out.display(),
+        out.display(),
         rows.len()
     );
-    Ok(violations)
+    let detail = "(revdist's interval missed FCL's); see pareto.md";
+    driver::check_violations(violations, detail)
 }
 
 /// The 1-minute load average (other processes competing for the cores make timings noisy).
@@ -428,7 +420,7 @@ fn pairs_text(v: &[(String, String)]) -> String {
         .join(",")
 }
 
-fn run_pair(na: &str, nb: &str, args: &Args) -> Result<PairResult, Box<dyn std::error::Error>> {
+fn run_pair(na: &str, nb: &str, args: &Settings) -> Result<PairResult, Box<dyn std::error::Error>> {
     let pair_started = Instant::now();
     let pair = format!("{na}-{nb}");
     let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
@@ -441,7 +433,7 @@ fn run_pair(na: &str, nb: &str, args: &Args) -> Result<PairResult, Box<dyn std::
         &pb,
         args.poses,
         CLOSE_GAPS,
-        pair_seed(CLOSE_SEED, &pair),
+        pair_seed(args.seed, &pair),
         || pb_bar.inc(1),
     )?;
     pb_bar.finish_and_clear();
@@ -642,36 +634,65 @@ fn run_pair(na: &str, nb: &str, args: &Args) -> Result<PairResult, Box<dyn std::
     Ok(PairResult { rows, skipped })
 }
 
-fn csv(rows: &[Row], prov: &Provenance, load: &str) -> String {
-    let mut s = prov.csv_preamble();
-    let _ = writeln!(s, "# load_average_1min_start_end: {load}");
-    s.push_str(
-        "method,pair,eps,poses,width_max,width_median,query_median_us,query_p90_us,build_ms,bytes,\
-         mean_node_pairs,zero_lower,triangles,layout,checks,violations\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{:e},{},{:.4e},{:.4e},{:.2},{:.2},{:.4},{},{},{},{},{},{},{}",
-            r.method.key(),
-            r.pair,
-            r.eps,
-            r.poses,
-            r.width_max,
-            r.width_median,
-            r.median_us,
-            r.p90_us,
-            r.build_ms,
-            r.bytes,
-            r.node_pairs.map_or(String::new(), |n| format!("{n:.1}")),
-            r.zero_lower.map_or(String::new(), |n| n.to_string()),
-            r.triangles.map_or(String::new(), |t| t.to_string()),
-            r.layout.unwrap_or(""),
-            r.checks,
-            r.violations
-        );
-    }
-    s
+/// The columns of `pareto.csv` and of the per-pair tables in `pareto.md`.
+fn cost_table() -> Table<'static, Row> {
+    let or_dash = |v: Option<String>| v.unwrap_or_else(|| "-".into());
+    Table::new()
+        .csv("method", |r: &Row| r.method.key().to_owned())
+        .with_markdown("method", |r| r.method.label().to_owned())
+        .csv("pair", |r| r.pair.clone())
+        .csv("eps", |r| format!("{:e}", r.eps))
+        .with_markdown("eps", |r| format!("{:.0e}", r.eps))
+        .csv("poses", |r| r.poses.to_string())
+        .csv("width_max", |r| format!("{:.4e}", r.width_max))
+        .csv("width_median", |r| format!("{:.4e}", r.width_median))
+        .markdown("certified error: max / median", |r| {
+            format!("{:.2e} / {:.2e}", r.width_max, r.width_median)
+        })
+        .right()
+        .csv("query_median_us", |r| format!("{:.2}", r.median_us))
+        .csv("query_p90_us", |r| format!("{:.2}", r.p90_us))
+        .markdown("query median / p90 (us)", |r| {
+            format!("{:.1} / {:.1}", r.median_us, r.p90_us)
+        })
+        .right()
+        .markdown("node pairs / query", move |r| {
+            or_dash(r.node_pairs.map(|n| format!("{n:.0}")))
+        })
+        .right()
+        .markdown("lower = 0", move |r| {
+            or_dash(r.zero_lower.map(|n| n.to_string()))
+        })
+        .right()
+        .csv("build_ms", |r| format!("{:.4}", r.build_ms))
+        .with_markdown("build (ms)", |r| format!("{:.3}", r.build_ms))
+        .right()
+        .csv("bytes", |r| r.bytes.to_string())
+        .with_markdown("memory", |r| human_bytes(r.bytes as f64))
+        .right()
+        .csv("mean_node_pairs", |r| {
+            r.node_pairs.map_or(String::new(), |n| format!("{n:.1}"))
+        })
+        .csv("zero_lower", |r| {
+            r.zero_lower.map_or(String::new(), |n| n.to_string())
+        })
+        .csv("triangles", |r| {
+            r.triangles.map_or(String::new(), |t| t.to_string())
+        })
+        .markdown("triangles (layout)", move |r| {
+            or_dash(
+                r.triangles
+                    .map(|t| format!("{t} ({})", r.layout.unwrap_or(""))),
+            )
+        })
+        .right()
+        .csv("layout", |r| r.layout.unwrap_or("").to_owned())
+        .csv("checks", |r| r.checks.to_string())
+        .csv("violations", |r| r.violations.to_string())
+        .markdown("violations / checks", |r| {
+            format!("{} / {}", r.violations, r.checks)
+        })
+        .right()
 }
 
 /// The row of `method` on `pair` at `eps`.
@@ -684,7 +705,7 @@ fn find<'a>(rows: &'a [Row], method: Method, pair: &str, eps: f64) -> Option<&'a
 fn markdown(
     rows: &[Row],
     skipped: &[String],
-    args: &Args,
+    args: &Settings,
     prov: &Provenance,
     (wall, load): (f64, &str),
 ) -> String {
@@ -734,32 +755,10 @@ fn markdown(
         }
     }
     let pairs: Vec<String> = args.pairs.iter().map(|(a, b)| format!("{a}-{b}")).collect();
+    let table = cost_table();
     for pair in &pairs {
         let _ = writeln!(s, "\n## {pair}\n");
-        s.push_str(
-            "| method | eps | certified error: max / median | query median / p90 (us) | node pairs / query | lower = 0 | build (ms) | memory | triangles (layout) | violations / checks |\n\
-             | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
-        );
-        for r in rows.iter().filter(|r| &r.pair == pair) {
-            let _ = writeln!(
-                s,
-                "| {} | {:.0e} | {:.2e} / {:.2e} | {:.1} / {:.1} | {} | {} | {:.3} | {} | {} | {} / {} |",
-                r.method.label(),
-                r.eps,
-                r.width_max,
-                r.width_median,
-                r.median_us,
-                r.p90_us,
-                r.node_pairs.map_or("-".to_string(), |n| format!("{n:.0}")),
-                r.zero_lower.map_or("-".to_string(), |n| n.to_string()),
-                r.build_ms,
-                human_bytes(r.bytes as f64),
-                r.triangles
-                    .map_or("-".to_string(), |t| format!("{t} ({})", r.layout.unwrap_or(""))),
-                r.violations,
-                r.checks
-            );
-        }
+        s.push_str(&table.markdown_text(rows.iter().filter(|r| &r.pair == pair)));
     }
     s.push_str(&prov.markdown_footer());
     s
@@ -773,7 +772,7 @@ fn cross_checks(rows: &[Row]) -> (usize, usize) {
 }
 
 /// Sentences on what the data show, computed from the rows (so they stay true when rerun).
-fn summary(rows: &[Row], args: &Args) -> String {
+fn summary(rows: &[Row], args: &Settings) -> String {
     let mut s = String::new();
     let (checks, violations) = cross_checks(rows);
     let pairs: Vec<String> = args.pairs.iter().map(|(a, b)| format!("{a}-{b}")).collect();
@@ -935,7 +934,7 @@ fn summary(rows: &[Row], args: &Args) -> String {
     s
 }
 
-fn figures(out: &Path, rows: &[Row], args: &Args) -> Result<(), Box<dyn std::error::Error>> {
+fn figures(out: &Path, rows: &[Row], args: &Settings) -> Result<(), Box<dyn std::error::Error>> {
     let pairs: Vec<String> = args.pairs.iter().map(|(a, b)| format!("{a}-{b}")).collect();
     let panels = |y: &dyn Fn(&Row) -> f64| -> Vec<Panel> {
         pairs

@@ -9,20 +9,26 @@
 //! is at most `g`: a kernel answering more than `g` missed the minimum. Writes
 //! `patch_kernels.csv` and `patch_kernels.md`: time per pair and misses per gap.
 //!
-//! Usage: `patch_kernels [OUT_DIR] [--pairs N]` (default `figures`, 2000 pairs per gap).
+//! Usage: `patch_kernels [--out DIR] [--patch-pairs N] [--seed S]` (default `figures`, 2000
+//! patch pairs per gap).
 
+use clap::Parser;
+use experiments::args::positive_count;
+use experiments::cli::{Out, Seed};
+use experiments::driver::{self, DriverResult};
+use experiments::table::Table;
 use experiments::SplitMix;
 use nalgebra::{Isometry3, Point2, Translation3};
 use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
 use revdist::query::{Patch, ProfileArc};
-use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::time::Instant;
 
 /// Gaps to contact.
 const GAPS: [f64; 4] = [1e-2, 1e-4, 1e-6, 1e-8];
-/// Fixed seed: the same pairs on every run.
+/// Default seed: the same pairs on every run.
 const SEED: u64 = 0x6a05_5e3d;
+/// Patch pairs per gap by default.
+const DEFAULT_PATCH_PAIRS: usize = 2000;
 /// Round-off allowed above the gap: sliding composes a translation with the pose
 /// (~1e-16 of the pose size, which is O(1)).
 const GAP_SLACK: f64 = 1e-14;
@@ -59,8 +65,8 @@ struct Case {
     gap: f64,
 }
 
-fn cases(n: usize) -> Vec<Case> {
-    let mut rng = SplitMix(SEED);
+fn cases(n: usize, seed: u64) -> Vec<Case> {
+    let mut rng = SplitMix(seed);
     let reference = PatchOptions::default();
     let mut out = Vec::new();
     for &gap in &GAPS {
@@ -95,31 +101,52 @@ struct Row {
     worst_excess: f64,
 }
 
-fn main() {
-    if let Err(e) = run() {
-        eprintln!("error: {e}");
-        std::process::exit(2);
-    }
+/// The columns of `patch_kernels.csv` and of the table in `patch_kernels.md`.
+fn kernel_table() -> Table<'static, Row> {
+    Table::new()
+        .csv("kernel", |r: &Row| r.kernel.to_owned())
+        .with_markdown_header("kernel")
+        .csv("gap", |r| format!("{:e}", r.gap))
+        .with_markdown_header("gap")
+        .csv("pairs", |r| r.pairs.to_string())
+        .with_markdown_header("pairs")
+        .csv("us_per_pair", |r| format!("{:.2}", r.micros_per_pair))
+        .with_markdown("time per pair (us)", |r| {
+            format!("{:.1}", r.micros_per_pair)
+        })
+        .csv("misses", |r| r.misses.to_string())
+        .with_markdown_header("misses")
+        .csv("worst_excess", |r| format!("{:e}", r.worst_excess))
+        .with_markdown("worst excess", |r| format!("{:.1e}", r.worst_excess))
 }
 
-fn run() -> Result<(), Box<dyn std::error::Error>> {
-    let mut out = PathBuf::from("figures");
-    let mut n = 2000;
-    let mut args = std::env::args().skip(1);
-    while let Some(a) = args.next() {
-        match a.as_str() {
-            "--pairs" => {
-                n = args
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .ok_or("--pairs needs a positive integer")?
-            }
-            _ if a.starts_with('-') => return Err(format!("unknown option {a}").into()),
-            _ => out = PathBuf::from(a),
-        }
-    }
-    std::fs::create_dir_all(&out)?;
-    let all = cases(n);
+/// What the leaf kernel's accuracy costs: leaf-sized patch pairs (short arcs and segments)
+/// slid to a known gap of 1e-2 .. 1e-8 from contact, solved by the sampled scan, by circle
+/// binormals, and by binormals with the Gauss-map restriction; per kernel and gap, the time
+/// per pair and the misses (answers above the gap, i.e. a missed minimum). Writes
+/// patch_kernels.csv and .md.
+#[derive(Parser)]
+struct Args {
+    #[command(flatten)]
+    out: Out,
+    /// Patch pairs per gap [default: 2000]
+    #[arg(long, value_name = "N", value_parser = positive_count)]
+    patch_pairs: Option<usize>,
+    #[command(flatten)]
+    seed: Seed,
+}
+
+fn main() {
+    driver::run(run)
+}
+
+fn run(args: Args) -> DriverResult {
+    let out = args.out.dir;
+    let (n, seed) = (
+        args.patch_pairs.unwrap_or(DEFAULT_PATCH_PAIRS),
+        args.seed.or(SEED),
+    );
+    let all = cases(n, seed);
     let kernels = [
         ("sampled scan", Kernel::Sweep, false),
         ("circle binormals", Kernel::Binormals, false),
@@ -151,32 +178,24 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             });
         }
     }
-    let mut csv = String::from("kernel,gap,pairs,us_per_pair,misses,worst_excess\n");
-    let mut md = String::from(
+    let table = kernel_table();
+    let md = String::from(
         "# Leaf kernels: exact patch distance, time and misses near contact\n\n\
          Leaf-sized patch pairs (arcs of sweep <= 0.1 rad and short segments) slid so that a \
          known pair of points is `gap` apart: the true distance is at most `gap`, and an answer \
-         above it is a missed minimum. Written by `target/release/patch_kernels`.\n\n\
-         | kernel | gap | pairs | time per pair (us) | misses | worst excess |\n\
-         | --- | --- | --- | --- | --- | --- |\n",
-    );
-    for r in &rows {
-        writeln!(
-            csv,
-            "{},{:e},{},{:.2},{},{:e}",
-            r.kernel, r.gap, r.pairs, r.micros_per_pair, r.misses, r.worst_excess
-        )?;
-        writeln!(
-            md,
-            "| {} | {:e} | {} | {:.1} | {} | {:.1e} |",
-            r.kernel, r.gap, r.pairs, r.micros_per_pair, r.misses, r.worst_excess
-        )?;
-    }
+         above it is a missed minimum. Written by `target/release/patch_kernels`.\n\n",
+    ) + &table.markdown_text(&rows);
     let prov = experiments::provenance::Provenance::collect(
         "patch_kernels (leaf kernels near contact)",
-        &[],
+        &[
+            ("patch_pairs_per_gap", n.to_string()),
+            ("seed", format!("{seed:#x}")),
+        ],
     );
-    std::fs::write(out.join("patch_kernels.csv"), prov.csv_preamble() + &csv)?;
+    std::fs::write(
+        out.join("patch_kernels.csv"),
+        prov.csv_preamble() + &table.csv_text(&rows),
+    )?;
     std::fs::write(out.join("patch_kernels.md"), md + &prov.markdown_footer())?;
     print!("{}", std::fs::read_to_string(out.join("patch_kernels.md"))?);
     Ok(())

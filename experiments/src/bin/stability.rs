@@ -10,10 +10,13 @@
 //! against delta, circle and solid level in two panels).
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
-use experiments::args;
+use clap::Parser;
+use experiments::args::positive_count;
+use experiments::cli::{Out, Paper};
+use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, log_tick, PlotResult, CAPTION, FONT, LABEL, TICK};
 use experiments::progress::bar;
 use experiments::provenance::Provenance;
@@ -21,6 +24,7 @@ use experiments::stability::{
     circle_samples, delta_value, solid_samples, summarise, Config, Level, Row, Sample,
     CIRCLE_FAMILIES, CIRCLE_REL_BOUND, DEFAULT_EPS, DELTA_EXPONENTS, SOLID_FAMILIES, UNIT_ROUNDOFF,
 };
+use experiments::table::Table;
 use plotters::prelude::*;
 
 /// Seeds per family and delta of the default run and of `--paper`.
@@ -31,69 +35,45 @@ const PLOT_FLOOR: f64 = 1e-18;
 /// Cases listed per level in the Markdown's "largest errors" lists.
 const LARGEST_LISTED: usize = 5;
 
-const USAGE: &str = "usage: stability [--out DIR] [--seeds N] [--paper]\n  \
-    --out DIR   output directory (default figures)\n  \
-    --seeds N   random perturbations and rigid motions per family and delta (default 6)\n  \
-    --paper     64 seeds per family and delta";
-
+/// Numerical stability near degenerate configurations: the error of revdist against exact
+/// references as each degenerate family is perturbed by delta = 0 and 1e-16 .. 1e-1, at the
+/// circle level (double-precision circle/circle distance against exact rational arithmetic)
+/// and at the solid level (certified queries against closed forms in MPFR), checked against
+/// their bounds. Writes stability.csv, .md and .svg (6 seeds per family and delta; 64 with
+/// --paper).
+#[derive(Parser)]
 struct Args {
-    out: PathBuf,
-    seeds: usize,
+    #[command(flatten)]
+    out: Out,
+    /// Random perturbations and rigid motions per family and delta [default: 6; --paper: 64]
+    #[arg(long, value_name = "N", value_parser = positive_count)]
+    seeds: Option<usize>,
+    #[command(flatten)]
+    paper: Paper,
 }
 
-fn parse_args(argv: &[String]) -> Result<Option<Args>, String> {
-    let mut out = PathBuf::from("figures");
-    let mut seeds = None;
-    let mut paper = false;
-    let mut i = 0;
-    while i < argv.len() {
-        match argv[i].as_str() {
-            "--out" => {
-                out = PathBuf::from(args::value(argv, i)?);
-                i += 1;
-            }
-            "--seeds" => {
-                seeds = Some(args::count(&args::value(argv, i)?, "--seeds")?);
-                i += 1;
-            }
-            "--paper" => paper = true,
-            "-h" | "--help" => return Ok(None),
-            other => return Err(format!("unknown argument '{other}'")),
-        }
-        i += 1;
-    }
-    let seeds = seeds.unwrap_or(if paper { PAPER_SEEDS } else { DEFAULT_SEEDS });
-    Ok(Some(Args { out, seeds }))
+/// The study's errors (shareable across threads) as a driver's error.
+fn boxed(e: Box<dyn std::error::Error + Send + Sync>) -> Box<dyn std::error::Error> {
+    e
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match parse_args(&args) {
-        Ok(None) => println!("{USAGE}"),
-        Ok(Some(a)) => {
-            if let Err(e) = run(&a) {
-                eprintln!("error: {e}");
-                std::process::exit(1);
-            }
-        }
-        Err(e) => {
-            eprintln!("error: {e}\n{USAGE}");
-            std::process::exit(2);
-        }
-    }
+    driver::run(run)
 }
 
-fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
-    let cfg = Config::full(args.seeds, DEFAULT_EPS);
+fn run(args: Args) -> DriverResult {
+    let seeds = args
+        .seeds
+        .unwrap_or(args.paper.pick(DEFAULT_SEEDS, PAPER_SEEDS));
+    let out = &args.out.dir;
+    let cfg = Config::full(seeds, DEFAULT_EPS);
     let start = Instant::now();
     let pb = bar(0, "circles");
-    let mut samples = circle_samples(&cfg, Some(&pb))?;
+    let mut samples = circle_samples(&cfg, Some(&pb)).map_err(boxed)?;
     pb.finish_and_clear();
     let t_circles = start.elapsed().as_secs_f64();
     let pb = bar(0, "solids");
-    samples.extend(solid_samples(&cfg, Some(&pb))?);
+    samples.extend(solid_samples(&cfg, Some(&pb)).map_err(boxed)?);
     pb.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
     println!(
@@ -106,7 +86,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
     let prov = Provenance::collect(
         "stability",
         &[
-            ("seeds", args.seeds.to_string()),
+            ("seeds", seeds.to_string()),
             (
                 "deltas",
                 format!(
@@ -120,16 +100,16 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
             ("seconds", format!("{seconds:.1}")),
         ],
     );
-    let csv = csv_text(&prov, &rows);
-    let md = markdown(&prov, &rows, &samples, args.seeds);
+    let csv = prov.csv_preamble() + &delta_table().csv_text(&rows);
+    let md = markdown(&prov, &rows, &samples, seeds);
     let (csv_path, md_path, svg_path) = (
-        args.out.join("stability.csv"),
-        args.out.join("stability.md"),
-        args.out.join("stability.svg"),
+        out.join("stability.csv"),
+        out.join("stability.md"),
+        out.join("stability.svg"),
     );
     std::fs::write(&csv_path, csv)?;
     std::fs::write(&md_path, &md)?;
-    draw(&svg_path, &rows, args.seeds).map_err(|e| format!("drawing: {e}"))?;
+    draw(&svg_path, &rows, seeds).map_err(|e| format!("drawing: {e}"))?;
     print!("{md}");
     let bad: Vec<&Sample> = samples.iter().filter(|s| !s.ok()).collect();
     for s in &bad {
@@ -156,38 +136,80 @@ fn opt(x: f64) -> String {
     }
 }
 
-fn csv_text(prov: &Provenance, rows: &[Row]) -> String {
-    let mut s = prov.csv_preamble();
-    s.push_str(
-        "level,family,delta,cases,max_abs_error,median_abs_error,max_rel_error,median_rel_error,\
-         bound,max_error_over_bound,max_certified_width,certificate_violations,bound_exceeded,\
-         max_time_us\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{:e},{},{:.3e},{:.3e},{:.3e},{:.3e},{:.3e},{:.3e},{},{},{},{:.1}",
-            r.key.level.name(),
-            r.key.family,
-            delta_value(r.key.delta),
-            r.cases,
-            r.max_abs,
-            r.median_abs,
-            r.max_rel,
-            r.median_rel,
-            r.bound,
-            r.max_over_bound,
-            opt(r.max_width),
-            if r.key.level == Level::Solid {
-                r.certificate_violations.to_string()
-            } else {
-                String::new()
-            },
-            r.bound_exceeded,
-            r.max_seconds * 1e6
-        );
+/// The columns of `stability.csv`: one line per level, family and delta.
+fn delta_table() -> Table<'static, Row> {
+    let sci3 = |f: fn(&Row) -> f64| move |r: &Row| format!("{:.3e}", f(r));
+    Table::new()
+        .csv("level", |r: &Row| r.key.level.name().to_owned())
+        .csv("family", |r| r.key.family.to_owned())
+        .csv("delta", |r| format!("{:e}", delta_value(r.key.delta)))
+        .csv("cases", |r| r.cases.to_string())
+        .csv("max_abs_error", sci3(|r| r.max_abs))
+        .csv("median_abs_error", sci3(|r| r.median_abs))
+        .csv("max_rel_error", sci3(|r| r.max_rel))
+        .csv("median_rel_error", sci3(|r| r.median_rel))
+        .csv("bound", sci3(|r| r.bound))
+        .csv("max_error_over_bound", sci3(|r| r.max_over_bound))
+        .csv("max_certified_width", |r| opt(r.max_width))
+        .csv("certificate_violations", |r| match r.key.level {
+            Level::Solid => r.certificate_violations.to_string(),
+            Level::Circle => String::new(),
+        })
+        .csv("bound_exceeded", |r| r.bound_exceeded.to_string())
+        .csv("max_time_us", |r| format!("{:.1}", r.max_seconds * 1e6))
+}
+
+/// One line of the Markdown table: a family's worst cases over all deltas.
+struct FamilyLine<'a> {
+    level: Level,
+    family: &'a str,
+    variants: &'a [&'a str],
+    rows: Vec<&'a Row>,
+}
+
+impl FamilyLine<'_> {
+    /// The family's row maximising `key`.
+    fn worst(&self, key: fn(&Row) -> f64) -> &Row {
+        worst(&self.rows, key)
     }
-    s
+    fn solid(&self) -> bool {
+        self.level == Level::Solid
+    }
+    /// `count` summed over the family's rows.
+    fn total(&self, count: fn(&Row) -> usize) -> usize {
+        self.rows.iter().map(|r| count(r)).sum()
+    }
+}
+
+/// The columns of the Markdown table: worst errors per family.
+fn family_table<'a>() -> Table<'static, FamilyLine<'a>> {
+    Table::new()
+        .markdown("level", |f: &FamilyLine| f.level.name().to_owned())
+        .markdown("family", |f| f.family.to_owned())
+        .markdown("configurations", |f| f.variants.join(", "))
+        .markdown("cases", |f| f.total(|r| r.cases).to_string())
+        .markdown("worst abs error (at delta)", |f| {
+            let w = f.worst(|r| r.max_abs);
+            format!("{:.2e} ({})", w.max_abs, delta_text(w.key.delta))
+        })
+        .markdown("worst rel error", |f| {
+            format!("{:.2e}", f.worst(|r| r.max_rel).max_rel)
+        })
+        .markdown("worst error / bound", |f| {
+            format!("{:.2e}", f.worst(|r| r.max_over_bound).max_over_bound)
+        })
+        .markdown("widest certified interval", |f| match f.solid() {
+            true => format!("{:.2e}", f.worst(|r| r.max_width).max_width),
+            false => "-".into(),
+        })
+        .markdown("certificate violations", |f| match f.solid() {
+            true => f.total(|r| r.certificate_violations).to_string(),
+            false => "-".into(),
+        })
+        .markdown("above bound", |f| f.total(|r| r.bound_exceeded).to_string())
+        .markdown("slowest answer (us; circles: best of 5 runs)", |f| {
+            format!("{:.0}", f.worst(|r| r.max_seconds).max_seconds * 1e6)
+        })
 }
 
 /// The row of `rows` (one family) maximising `key`.
@@ -229,51 +251,22 @@ fn markdown(prov: &Provenance, rows: &[Row], samples: &[Sample], seeds: usize) -
          certified interval that holds the exact distance), not a loss of accuracy.\n",
         2.0 * DEFAULT_EPS
     );
-    s.push_str(
-        "| level | family | configurations | cases | worst abs error (at delta) | worst rel error | worst error / bound | widest certified interval | certificate violations | above bound | slowest answer (us; circles: best of 5 runs) |\n\
-         | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
-    );
-    let families: Vec<(Level, &str, &[&str])> = CIRCLE_FAMILIES
+    let families: Vec<FamilyLine> = CIRCLE_FAMILIES
         .iter()
         .map(|(f, v)| (Level::Circle, *f, *v))
         .chain(SOLID_FAMILIES.iter().map(|(f, v)| (Level::Solid, *f, *v)))
-        .collect();
-    for (level, family, variants) in families {
-        let g: Vec<&Row> = rows
-            .iter()
-            .filter(|r| r.key.level == level && r.key.family == family)
-            .collect();
-        if g.is_empty() {
-            continue;
-        }
-        let wa = worst(&g, |r| r.max_abs);
-        let wr = worst(&g, |r| r.max_rel);
-        let wb = worst(&g, |r| r.max_over_bound);
-        let solid = level == Level::Solid;
-        let width = if solid {
-            format!("{:.2e}", worst(&g, |r| r.max_width).max_width)
-        } else {
-            "-".into()
-        };
-        let viol: usize = g.iter().map(|r| r.certificate_violations).sum();
-        let above: usize = g.iter().map(|r| r.bound_exceeded).sum();
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | {:.2e} ({}) | {:.2e} | {:.2e} | {} | {} | {} | {:.0} |",
-            level.name(),
+        .map(|(level, family, variants)| FamilyLine {
+            level,
             family,
-            variants.join(", "),
-            g.iter().map(|r| r.cases).sum::<usize>(),
-            wa.max_abs,
-            delta_text(wa.key.delta),
-            wr.max_rel,
-            wb.max_over_bound,
-            width,
-            if solid { viol.to_string() } else { "-".into() },
-            above,
-            worst(&g, |r| r.max_seconds).max_seconds * 1e6
-        );
-    }
+            variants,
+            rows: rows
+                .iter()
+                .filter(|r| r.key.level == level && r.key.family == family)
+                .collect(),
+        })
+        .filter(|f| !f.rows.is_empty())
+        .collect();
+    s.push_str(&family_table().markdown_text(&families));
     let bad: Vec<&Sample> = samples.iter().filter(|x| !x.ok()).collect();
     if bad.is_empty() {
         s.push_str("\nEvery case is within its bound, and every certified interval holds the exact distance.\n");
