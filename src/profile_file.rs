@@ -90,6 +90,14 @@ pub fn from_toml_str(text: &str) -> Result<Profile, ProfileFileError> {
     Ok(Profile::new(name, pieces)?)
 }
 
+/// [`from_toml_str`] for a degenerate chain ([`Profile::allowing_self_contact`]): a
+/// regression profile whose chain touches or folds back onto itself, kept for robustness
+/// tests of the trees and queries.
+pub fn from_toml_str_allowing_self_contact(text: &str) -> Result<Profile, ProfileFileError> {
+    let (name, pieces) = pieces_from_toml_str(text)?;
+    Ok(Profile::allowing_self_contact(name, pieces)?)
+}
+
 /// The name and the validated pieces of a profile file, without the checks of the chain
 /// ([`Profile::new`] or, for robustness tests on degenerate chains,
 /// [`Profile::allowing_self_contact`]).

@@ -51,7 +51,8 @@ use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use rug::{Float, Rational};
-use verify::circles::{catalogue, run_case, Case, CatalogueEntry, RCircle, Rng};
+use verify::circles::{catalogue, random_motion, run_case, Case, CatalogueEntry, RCircle};
+use verify::random_profiles::SplitMix64;
 use verify::exact_circle::{
     rotation_from_quaternion, rotation_from_rational_quaternion, RVec, PREC,
 };
@@ -275,12 +276,12 @@ fn catalogue_entry(label: &str) -> Result<CatalogueEntry, Error> {
 
 /// A rational point of the unit sphere (inverse stereographic projection of a random
 /// rational point of the plane, then a random sign): exact, and spread over the sphere.
-fn rational_unit(rng: &mut Rng) -> RVec {
-    let s = Rational::from((rng.int(-1000, 1000), 500));
-    let t = Rational::from((rng.int(-1000, 1000), 500));
+fn rational_unit(rng: &mut SplitMix64) -> RVec {
+    let s = Rational::from((rng.signed_int(-1000, 1000), 500));
+    let t = Rational::from((rng.signed_int(-1000, 1000), 500));
     let n2 = Rational::from(&s * &s) + Rational::from(&t * &t);
     let den = Rational::from(&n2 + 1u32);
-    let sign = if rng.int(0, 1) == 0 { 1 } else { -1 };
+    let sign = if rng.signed_int(0, 1) == 0 { 1 } else { -1 };
     [
         Rational::from(&s * 2u32) * sign / &den,
         Rational::from(&t * 2u32) * sign / &den,
@@ -293,7 +294,7 @@ pub fn circle_sample(fi: usize, delta: Option<i32>, seed: usize) -> Result<Sampl
     let (family, labels) = CIRCLE_FAMILIES[fi];
     let variant = labels[seed % labels.len()];
     let (_, c, quat, r, analytic) = catalogue_entry(variant)?;
-    let mut rng = Rng(case_seed(Level::Circle, fi, delta, seed));
+    let mut rng = SplitMix64(case_seed(Level::Circle, fi, delta, seed));
     let rot = rotation_from_quaternion(quat);
     let (b, analytic) = match delta {
         None => (RCircle::rotated(c, &rot, r), analytic),
@@ -309,12 +310,12 @@ pub fn circle_sample(fi: usize, delta: Option<i32>, seed: usize) -> Result<Sampl
             let [nx, ny, nz] = n;
             let tilt = rotation_from_rational_quaternion(&[w, nx, ny, nz]);
             // Radius changed by +-d.
-            let r = if rng.int(0, 1) == 0 { r + &d } else { r - &d };
+            let r = if rng.signed_int(0, 1) == 0 { r + &d } else { r - &d };
             let zero = [Rational::new(), Rational::new(), Rational::new()];
             (RCircle::rotated(zero, &rot, r).moved(&tilt, &centre), None)
         }
     };
-    let motion = rng.motion();
+    let motion = random_motion(&mut rng);
     let case = Case {
         family,
         label: variant.to_string(),
@@ -898,7 +899,7 @@ mod tests {
 
     #[test]
     fn rational_units_are_unit() {
-        let mut rng = Rng(3);
+        let mut rng = SplitMix64(3);
         for _ in 0..20 {
             let u = rational_unit(&mut rng);
             let n: Rational = u.iter().map(|c| Rational::from(c * c)).sum();

@@ -591,6 +591,5 @@ fn spirals_merged_across_knots_use_arc_deviation() {
 /// A regression profile of a degenerate chain (a retrace, zero-width fin or near-cusp that
 /// [`Profile::new`] rejects as touching itself): the tree must still build and hold.
 fn degenerate_chain(text: &str) -> Profile {
-    let (name, pieces) = crate::profile_file::pieces_from_toml_str(text).unwrap();
-    Profile::allowing_self_contact(name, pieces).unwrap()
+    crate::profile_file::from_toml_str_allowing_self_contact(text).unwrap()
 }

@@ -643,7 +643,8 @@ fn draw(rng: &mut SplitMix64, kind: usize) -> Result<Drawn, String> {
         pieces = pieces.iter().rev().map(NurbsCurve::reversed).collect();
         notes.push("reversed".into());
     }
-    let profile = Profile::new(KINDS[kind], pieces).map_err(|e| format!("Profile::new: {e}"))?;
+    let profile = Profile::allowing_self_contact(KINDS[kind], pieces)
+        .map_err(|e| format!("Profile::allowing_self_contact: {e}"))?;
     let approach = [angle.cos(), angle.sin()];
     // Sometimes aim beside the stationary point along the contact line (still behind it).
     let aim = if rng.chance(0.3) {

@@ -614,7 +614,7 @@ mod tests {
     /// t = 0.93584, where `h'` nearly vanishes as the curve decelerates).
     #[test]
     fn closest_next_to_zero_speed_knot_is_on_the_curve() {
-        let profile = revdist::profile_file::from_toml_str(include_str!(
+        let profile = revdist::profile_file::from_toml_str_allowing_self_contact(include_str!(
             "../../regressions/near-stationary/zero-speed-knot.toml"
         ))
         .expect("the f11 profile builds");
@@ -643,7 +643,7 @@ mod tests {
     /// random profile against the bottle, reported overlapping at 1.27e-6 apart).
     #[test]
     fn corner_inside_a_piece_gives_no_side_from_its_tangent() {
-        let profile = revdist::profile_file::from_toml_str(
+        let profile = revdist::profile_file::from_toml_str_allowing_self_contact(
             r#"
 name = "quad-with-inner-corner"
 [[piece]]
