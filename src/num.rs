@@ -19,13 +19,13 @@ pub fn norm2(x: f64, y: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::norm2;
-    use crate::query::patch_distance::tests::Rng;
+    use crate::test_rng::Lcg;
 
     /// Agrees with `hypot` to 1.5 ulp over magnitudes from 1e-200 to 1e200, including
     /// zeros, one-sided inputs and the fallback ranges.
     #[test]
     fn matches_hypot() {
-        let mut rng = Rng(0x2545_f491);
+        let mut rng = Lcg(0x2545_f491);
         let mut next = move || rng.f();
         for _ in 0..200_000 {
             let ex = (next() * 400.0 - 200.0).round() as i32;

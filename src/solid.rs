@@ -6,8 +6,8 @@
 //! solids the relative pose `pos_ab = pose_a^-1 * pose_b` places B in A's frame.
 
 use crate::biarc::{BiarcTree, TreeError};
+use crate::bvh::QueryTree;
 use crate::profile::Profile;
-use crate::query::tree::QueryTree;
 use nalgebra::{Isometry3, Point3};
 use std::sync::Arc;
 
