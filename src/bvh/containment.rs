@@ -1,7 +1,7 @@
 //! Point-in-solid tests: a point is inside a solid of revolution when its meridian
 //! coordinates `(rho, z)` lie inside the profile region, which is the area inside a closed
 //! profile loop, or for an open-on-axis profile the area enclosed by the chain and the axis
-//! segment joining its ends (DESIGN.md: solids, not surfaces).
+//! segment joining its ends (solids, not surfaces: a query between overlapping or nested solids answers 0).
 //!
 //! The test is a winding number of the approximating chain (arcs and segments), with the
 //! closing axis segment for open profiles. Its `margin` is the distance of the point from

@@ -10,7 +10,7 @@
 //! unit direction `n` is the largest of theirs, `n . c + r |n - (n . k) k|` (centre `c`, unit
 //! normal `k`). This module holds the shapes and their support function; the lower bound
 //! between two hulls, iterated on their Minkowski difference, is
-//! [`crate::query::bound::hull_bound`].
+//! [`mod@crate::query::bound::hull_bound`].
 
 use super::patch::ProfileArc;
 use crate::num::norm2;
@@ -78,7 +78,7 @@ impl HullRef<'_> {
 /// A set lying within `grow` of the convex hull of up to `N` parallels (circles about the
 /// axis, given by their meridian points `(rho, z)`): a revolved piece's chords
 /// ([`PieceHull`]), a revolved biarc's two chords ([`NodeHull`]), with their sagittas and
-/// any further bound added to `grow` ([`hull_bound`]).
+/// any further bound added to `grow` ([`crate::query::bound::hull_bound::hull_bound`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ParallelHull<const N: usize = 3> {
     points: [Point2<f64>; N],

@@ -2,7 +2,7 @@
 //! tree whose leaves are biarcs (one or two profile pieces) with their approximation bound
 //! `eps`, and whose every node stores a disk of the (rho, z) half-plane that contains both
 //! the original curve piece under it and its approximation. Revolved, the disk is a solid
-//! torus containing the corresponding part of the solid's boundary (see [`super::bounds`]).
+//! torus containing the corresponding part of the solid's boundary (see [`crate::query::bound::node_pair`]).
 
 use super::hull::{HullRef, NodeHull, UpperHull};
 use super::offset_solid::{detect, OffsetSolid};
@@ -75,7 +75,7 @@ pub struct QueryTree {
     pub eps: f64,
     /// The bound the tree was asked for (a biarc tree's build eps; [`QueryTree::eps`] for
     /// trees built from leaves). `eps <= target_eps`. The default query tolerance
-    /// ([`super::Tolerance::Trees`]) is the sum of both trees' `target_eps`.
+    /// ([`crate::query::Tolerance::Trees`]) is the sum of both trees' `target_eps`.
     pub target_eps: f64,
     /// First and last chain point under each node (`None` for nodes without pieces), when
     /// the leaves' pieces are consecutive runs of [`QueryTree::chain`] in order and join up
@@ -83,12 +83,12 @@ pub struct QueryTree {
     /// to skip whole subtrees ([`super::containment`]).
     pub node_ends: Vec<Option<[Point2<f64>; 2]>>,
     /// The solid is a ball or a solid torus (the chain is one circle): queries between two
-    /// such solids take the closed form of [`super::offset`] instead of a traversal.
+    /// such solids take the closed form of [`crate::query::kernel::ball_torus`] instead of a traversal.
     pub offset: Option<OffsetSolid>,
     /// Per node below the upper level, a hull of parallels that contains its original curve
     /// piece's surface up to its `grow` (the node's own biarc chords, grown by their
     /// sagittas and the biarc's bound; paper 4.1's fat biarcs), for the node-pair hull bound
-    /// ([`super::bounds::ParallelHull::bound`]). `None` for nodes with an arc above a half
+    /// ([`crate::bvh::hull::ParallelHull::bound`]). `None` for nodes with an arc above a half
     /// turn; empty for trees built from leaves; the upper level has [`Self::upper_hulls`].
     pub hulls: Vec<Option<NodeHull>>,
     /// Per node of the upper level over the spirals (index `node - upper_start`), the hull

@@ -1,4 +1,4 @@
-//! Circle/circle tests: analytic catalogue (research notes section 2.1 table), an independent
+//! Circle/circle tests: analytic catalogue (`docs/numerics.md` section 2.1), an independent
 //! sampling oracle, perturbations, rigid motions and property tests.
 
 use super::*;

@@ -3,7 +3,7 @@
 //! * Torus patch against torus patch: every common normal line is a binormal of the two
 //!   major circles; its surface points are the major-circle feet moved by `+-r` along the
 //!   line (the `l +- r1 +- r2` of the paper), kept when their arc angle is in range. The
-//!   Gauss-map restriction ([`super::gauss`]) narrows the angles searched.
+//!   Gauss-map restriction ([`crate::query::angles::normal_range`]) narrows the angles searched.
 //! * A circle against a torus patch: the distance from `G(theta)` to the torus' major circle
 //!   `M` (to the point of `M` in the meridian plane of `G(theta)`, or the opposite one) is
 //!   critical exactly where `G(theta)` and that point span a binormal of `G` and `M`: the
@@ -14,7 +14,7 @@
 //!
 //! Each function reports `false` (or `Err`) for configurations with a continuum of
 //! binormals or a zero-length binormal, where the caller falls back to the sampled
-//! kernels of [`super::sweep`].
+//! kernels of [`crate::query::angles::radial_field`].
 
 use super::normal_range::{major_angle_ranges, MajorRanges};
 use super::radial_field::ParamCircle;

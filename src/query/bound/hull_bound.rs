@@ -1,4 +1,4 @@
-//! Convex-hull lower bounds of revolved pieces (issue 11), converged by a support-point
+//! Convex-hull lower bounds of revolved pieces, converged by a support-point
 //! iteration on the hulls' Minkowski difference (Gilbert, Johnson and Keerthi 1988).
 //!
 //! A revolved segment is a frustum surface: it lies in the convex hull of its two boundary
@@ -150,7 +150,7 @@ impl<const N: usize> ParallelHull<N> {
 
     /// [`ParallelHull::bound_until`] with the hulls' nearest points found by the
     /// iteration (A's frame; `None` when the hulls overlap): a start for a realised pair of
-    /// the pieces (two cones have no closed-form nearest points, issue 11). With `converge`
+    /// the pieces (two cones have no closed-form nearest points). With `converge`
     /// the iteration runs on to the hulls' distance whatever `enough` (unless the bound
     /// reaches it): the nearest points are wanted, not only the bound.
     pub fn bound_and_witness<const M: usize>(

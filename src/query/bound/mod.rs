@@ -1,6 +1,6 @@
 //! Lower bounds between bounding volumes: the solid tori of disks, bounding spheres,
 //! spherical shells, height slabs ([`node_pair`], paper section 4.2) and convex hulls of
-//! parallels ([`hull_bound`], iterated on their Minkowski difference, with the simplex step
+//! parallels ([`mod@hull_bound`], iterated on their Minkowski difference, with the simplex step
 //! of [`simplex`]).
 //!
 //! **What this level decides.** A valid lower bound for everything inside two volumes,

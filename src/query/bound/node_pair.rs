@@ -34,7 +34,7 @@ pub enum BoundKind {
     Sphere,
     /// Sphere tests, then the hull and solid-torus bounds when the spheres do not prune
     /// (node pairs with a node over several spirals keep the sphere bound alone,
-    /// [`super::traverse`]'s node keys).
+    /// [`crate::query::traverse::search`]'s node keys).
     #[default]
     Torus,
 }
@@ -103,8 +103,8 @@ fn axis_of(pos_ab: &Isometry3<f64>) -> Vector3<f64> {
 ///
 /// Exact for a spherical piece (`c_rho = 0`) whenever the other surface's point nearest to
 /// `c` sees the sphere inside the piece's range, e.g. a ball resting in a ring's hole,
-/// which touches along a whole circle: a continuum that [`super::certify`] could only close
-/// by thousands of torus bounds (issue 11). `-inf` when neither piece is such an arc.
+/// which touches along a whole circle: a continuum that [`crate::query::leaf::subdivision`] could only close
+/// by thousands of torus bounds. `-inf` when neither piece is such an arc.
 pub fn shell_bound(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f64 {
     let one_side = |arc: &ProfileArc, other: &ProfileArc, to_other: &Isometry3<f64>| {
         let ProfileArc::Arc { center, radius, .. } = *arc else {
@@ -156,7 +156,7 @@ fn height_range(piece: &ProfileArc, pos_ab: &Isometry3<f64>) -> (f64, f64) {
 /// difference apart). Tried both ways. Exact for a flat disk or annulus (a horizontal
 /// segment, e.g. a cup's bottom or a table's top) facing a cone whose nearest boundary
 /// parallel lies over it: the pairs of straight pieces that no circle bound can separate
-/// near contact (issue 11). `-inf` when neither way separates.
+/// near contact. `-inf` when neither way separates.
 pub fn slab_bound(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f64 {
     slab_bound_in(a, b, &a.bounding_disk(), &b.bounding_disk(), pos_ab)
 }
@@ -218,7 +218,7 @@ pub fn torus_bound(da: &Disk, db: &Disk, pos_ab: &Isometry3<f64>) -> f64 {
 
 /// Lower bound for a node pair; `prune_above` lets cheap tests stop early when they already
 /// show the pair cannot beat the current upper bound. The bounding spheres first, then, when
-/// both nodes have one, the hulls of their fat biarcs ([`ParallelHull::bound`], closed form,
+/// both nodes have one, the hulls of their fat biarcs ([`crate::bvh::hull::ParallelHull::bound`], closed form,
 /// from the direction between the disks' axis points; the support points then steer it
 /// towards the hulls' closest points), then the solid tori of the disks (a circle/circle
 /// minimum).
@@ -244,7 +244,7 @@ pub fn node_pair_bound(
     // points of the major circles do not already show that they cannot reach the level:
     // the key then stays the spheres' and hulls' (node keys order the search; measured,
     // the tori's sharper keys did not save node pairs, and with the traversal's first
-    // leaf from [`super::traverse`]'s dive most node keys have a level).
+    // leaf from [`crate::query::traverse::search`]'s dive most node keys have a level).
     if torus_cannot_reach(da, db, pos_ab, prune_above) {
         return s;
     }

@@ -1,4 +1,4 @@
-//! The simplex of a hull iteration ([`super::hull_bound`]): up to four points of the two
+//! The simplex of a hull iteration ([`mod@super::hull_bound`]): up to four points of the two
 //! hulls' Minkowski difference and the point of their convex hull closest to the origin, by
 //! Voronoi regions (Gilbert, Johnson and Keerthi 1988; Ericson 2005, sections 5.1.5 and
 //! 9.5.2), with the pair of hull points behind it.

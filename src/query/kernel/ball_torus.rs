@@ -67,7 +67,7 @@ pub struct OffsetDistance {
 }
 
 /// Distance between two offset solids; `slack` is the caller's rounding slack (it covers
-/// the circle solver's relative error, [`super::distance::POSE_SLACK_REL`]).
+/// the circle solver's relative error, [`crate::tolerances::POSE_SLACK_REL`]).
 pub fn offset_distance(
     a: &OffsetSolid,
     b: &OffsetSolid,

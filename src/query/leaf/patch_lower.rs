@@ -7,7 +7,7 @@
 //! (for a centre with `rho < 0` the circle of radius `|rho|` still holds every revolved
 //! point within `r`, since `|rho_x - |c|| <= rho_x + |c|`). So each patch is inside the
 //! solid torus `{x : dist(x, M) <= r}` and, by the triangle inequality as in
-//! [`super::bounds`], `dist(patch A, patch B) >= dist(M_A, M_B) - r_A - r_B`. The bound is
+//! [`crate::query::bound::node_pair`], `dist(patch A, patch B) >= dist(M_A, M_B) - r_A - r_B`. The bound is
 //! tight whenever the two tori's closest points lie on the patches, which is the common
 //! case for the leaf pair that holds the minimum (paper section 3: the distance of two
 //! toroidal patches is `l - r1 - r2`, `l` a binormal length). Any patch pair also has the
@@ -82,18 +82,18 @@ impl CoreMemo {
 pub struct PatchLower {
     /// A rigorous lower bound of the patch distance.
     pub lower: f64,
-    /// Points near the closest pair (A's frame), from which [`realised`] projects onto the
+    /// Points near the closest pair (A's frame), from which [`super::patch_upper::realised`] projects onto the
     /// patches; `None` when the bound stopped early at the caller's pruning level.
     pub(super) near: Option<PointPair>,
     /// The pieces' hulls' nearest points
-    /// ([`super::hull::ParallelHull::bound_and_witness`]), a second start for [`realised`]
+    /// ([`crate::bvh::hull::ParallelHull::bound_and_witness`]), a second start for [`super::patch_upper::realised`]
     /// (the only good one for two cones).
     pub(super) hull_near: Option<PointPair>,
 }
 
 impl PatchLower {
     /// Direction from A's near point to B's (A's frame), a separating direction for
-    /// [`super::bounds::hull_bound`] (the hulls' nearest points' when the hull iteration
+    /// [`crate::query::bound::hull_bound::hull_bound`] (the hulls' nearest points' when the hull iteration
     /// found them); `None` when the bound stopped early.
     pub fn direction(&self) -> Option<Vector3<f64>> {
         self.hull_near
@@ -107,9 +107,9 @@ impl PatchLower {
 /// the pieces and the spherical-shell bound of arcs centred near the axis (closed form),
 /// and, while that does not reach `prune_at`, the arcs' torus bound (or the disks'
 /// solid-torus bound and the torus/cone bound when a piece is straight), and then the
-/// pieces' convex-hull bound ([`super::hull`]) iterated from the direction of the near
-/// points (it separates short pieces whose tori overlap, issue 11), whose nearest points
-/// are a second start for [`realised`]. Two cones have no near points of their own: the
+/// pieces' convex-hull bound ([`mod@crate::query::bound::hull_bound`]) iterated from the direction of the near
+/// points (it separates short pieces whose tori overlap), whose nearest points
+/// are a second start for [`super::patch_upper::realised`]. Two cones have no near points of their own: the
 /// hull iteration gives both.
 ///
 /// `precision` is the caller's: where the hulls lie within it of the pieces (their chords'
@@ -173,7 +173,7 @@ pub fn patch_lower(
     }
     let (lower, near_a, near_b) = match arc_tori(a, b, pos_ab, memo) {
         // An arc of large radius lies on a fat torus; its disk's solid torus is thinner
-        // when the piece is short (leaves are cut to [`super::tree::MAX_LEAF_RADIUS_REL`]).
+        // when the piece is short (leaves are cut to [`crate::bvh::tree::MAX_LEAF_RADIUS_REL`]).
         Some(t)
             if t.lower.max(spheres) < prune_at && t.lower.max(spheres) <= da.radius + db.radius =>
         {

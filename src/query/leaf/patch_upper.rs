@@ -61,10 +61,10 @@ pub fn polish(
 }
 
 /// A realised upper bound of a patch pair alone, without a lower bound (a cold query's
-/// first leaf pair, [`super::traverse`]): the pieces' points projected from the arcs' tori's
+/// first leaf pair, [`crate::query::traverse::search`]): the pieces' points projected from the arcs' tori's
 /// near points (one circle/circle minimum, memoised for the pair's later stage 1), or, with
 /// a straight piece, from the pieces' mid points and the hulls' nearest points after a few
-/// support points ([`super::hull::UNBOUNDED_ITERATIONS`]; a converged iteration cost twice
+/// support points ([`crate::query::bound::hull_bound::UNBOUNDED_ITERATIONS`]; a converged iteration cost twice
 /// the rest of this bound for no better start). `lower` is `-inf`. Stage 1 without a level
 /// (what the first leaf pair got before) cost 12-19 us of a 38-87 us query at eps 1e-4 for
 /// a lower bound nothing used; this costs well under a microsecond per patch pair.

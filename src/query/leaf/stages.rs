@@ -1,13 +1,14 @@
-//! A leaf pair in two stages (issue 11; the cost model in [`super`]).
+//! A leaf pair in two stages (paper section 4.2; what each stage costs is in
+//! `docs/performance.md`).
 //!
 //! * **Stage 1, bounds** ([`LeafPair::bounds`]): for every patch pair of the two leaves, the
-//!   cheap lower bound and realised upper bound of [`super::patch_bound`] (one circle/circle
+//!   cheap lower bound and realised upper bound of [`crate::query::leaf::patch_lower`] (one circle/circle
 //!   minimum each). When every pair is *settled* (its upper bound is within
 //!   [`SETTLE_REL`] of its lower bound, or its lower bound already reaches the caller's
 //!   pruning level) the leaf pair is done: the interval is as tight as an exact solve would
 //!   make it.
 //! * **Stage 2, exact** ([`LeafPair::exact`]): the exact patch distance of
-//!   [`mod@super::patch_distance`] for the pairs stage 1 could not settle, with interpenetration
+//!   [`mod@crate::query::kernel::patch_distance`] for the pairs stage 1 could not settle, with interpenetration
 //!   checks of the interior common normals. The traversal asks for it only when the leaf
 //!   pair is still the one that holds the query's lower bound.
 //!
@@ -31,11 +32,8 @@ use nalgebra::{Isometry3, Point2, Point3, Vector3};
 /// Share of two leaves' eps within which their pieces' hulls may stand in for the arcs'
 /// tori in a patch pair's cheap bound ([`patch_lower`]'s `precision`): a hull within the
 /// leaves' eps of its piece loses no more than the leaves themselves carry, and its nearest
-/// points start the realised pair. Measured against the tori everywhere (`query_cost
-/// --poses 150`, medians of two alternating runs, eps 1e-4, share 0.5): pawn-pawn 24.2 ->
-/// 23.3 us, table-lightmill 23.2 -> 20.6, pawn-cup 38.5 -> 36.0, cup-bottle 43.4 -> 37.0;
-/// same node pairs. Share 1 against 0.5: the same at 1e-4, cup-bottle at 1e-3 and pawn-cup
-/// and cup-bottle at 1e-5 5-10% faster; share 2 no better.
+/// points start the realised pair. Share 1 was the fastest of 0.5, 1 and 2 (measurements in
+/// `docs/performance.md`, "Leaf-stage budgets").
 pub const HULL_PRECISION_SHARE: f64 = 1.0;
 
 /// The absolute settle threshold of a query at configuration scale `scale` between trees
@@ -56,11 +54,9 @@ pub fn settle_threshold(scale: f64, eps_sum: f64) -> f64 {
 
 /// Sub-piece bounds ([`patch_lower_bound`]) a stage-1 patch pair may spend, about 1 us
 /// each, when its cheap bound does not prove it disjoint, before the leaf pair goes to the
-/// exact solve as "may intersect". Measured (`query_cost --poses 100`, eps 1e-3..1e-5):
-/// since the hull bounds ([`super::bounds::hull_bound`]) separate most such pairs before
-/// any split, budgets of 4-8 for both this and [`TIGHTEN_PAIRS`] are 15-25% faster than
-/// the former 24 and 32 on the paper-model pairs (cup-bottle 1e-5: 401 -> 332 us), and
-/// larger budgets (48/64) slower still: the extra cells rarely spare an exact solve.
+/// exact solve as "may intersect". Since the hull bounds separate most such pairs before
+/// any split, small budgets (4-8, also for [`TIGHTEN_PAIRS`]) were fastest: the extra cells
+/// of larger ones rarely spare an exact solve (`docs/performance.md`, "Leaf-stage budgets").
 pub const STAGE1_SPLIT_PAIRS: usize = 8;
 
 /// [`LeafPair::bounds`] polishes its realised pair until an alternation gains less than

@@ -2,21 +2,21 @@
 //! pairs whose exact kernel had to fall back to a sampled scan (continua of binormals,
 //! intersecting major circles, degenerate line fields): a sampled value is a distance
 //! between two real surface points, hence a valid *upper* bound, but it may miss the
-//! minimum, so it must never resolve a *lower* bound (DESIGN.md: lower bounds are true
+//! minimum, so it must never resolve a *lower* bound (a lower bound must be provably at most the true distance: lower bounds are true
 //! lower bounds).
 //!
 //! **Method.** Best-first branch and bound over pairs of sub-pieces `(a[s0, s1], b[u0, u1])`.
 //! Each sub-piece lies in a disk of the meridian half-plane ([`ProfileArc::bounding_disk`]: the chord's
 //! Thales disk for sweeps up to pi), and the revolved sub-surfaces lie in the solid tori of
 //! those disks, whose distance is bounded below by [`torus_bound`] (proof in
-//! [`super::bounds`]). The sub-piece pairs always cover both patches, so the smallest key
+//! [`crate::query::bound::node_pair`]). The sub-piece pairs always cover both patches, so the smallest key
 //! among the pairs still queued is a lower bound of the patch distance at every step; the
 //! search pops that smallest key and splits the larger of its two pieces in halves.
 //!
 //! A sub-piece pair on a sphere (or close to one) also has the spherical-shell bound of
 //! [`shell_bound`], exact for a ball touching a surface along a circle. Given a separating
 //! direction (the caller's near points), every cell also gets the convex-hull bound of
-//! [`super::hull::hull_bound`]: chord frusta minus sagittas, whose error shrinks with the square of the
+//! [`crate::query::bound::hull_bound::hull_bound`]: chord frusta minus sagittas, whose error shrinks with the square of the
 //! sub-piece length where the disk bounds' shrinks linearly; the torus bound (a circle/circle
 //! minimum) is then computed only for cells the closed forms leave below the target.
 //!

@@ -150,7 +150,7 @@ fn polish_approaches_the_patch_distance() {
 /// starts from the nearest points of their frusta's hulls. It is then within 1e-5 of the
 /// exact distance (relative; median 2e-8) in over 90% of separated configurations (255
 /// of 270 here), where the former start, the pieces' mid points, was never within 1e-3
-/// (median 34% too long): the query then had to solve the pair exactly (issue 11,
+/// (median 34% too long): the query then had to solve the pair exactly (on
 /// table-lightmill 1.1 -> 0.1 exact leaf pairs per query).
 #[test]
 fn two_cones_realise_their_distance() {

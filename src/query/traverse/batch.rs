@@ -4,7 +4,7 @@
 //! global pool (`RAYON_NUM_THREADS`).
 //!
 //! For motion sequences of one pair, where each frame's answer warm-starts the next, use
-//! [`super::distance_cached`] in order instead: frames are not independent.
+//! [`crate::query::distance_cached`] in order instead: frames are not independent.
 
 use super::distance::{distance, try_distance, Distance, QueryError, QueryOptions};
 use crate::solid::Solid;

@@ -1,6 +1,6 @@
 //! The distance query between two posed solids: Algorithm 2 over the boundary surfaces
-//! ([`super::traverse`]), then solid semantics (overlap and nesting give 0,
-//! [`super::overlap`]), optional refinement on the exact surfaces, and frame coherence
+//! ([`crate::query::traverse::search`]), then solid semantics (overlap and nesting give 0,
+//! [`crate::query::traverse::overlap`]), optional refinement on the exact surfaces, and frame coherence
 //! through a [`QueryCache`].
 //!
 //! Certification: the traversal bounds the distance between the boundary surfaces; the
@@ -56,7 +56,7 @@ pub struct QueryOptions {
     pub bound: BoundKind,
     /// Refine the witness points on the exact NURBS surfaces (needs the profiles).
     pub refine: bool,
-    /// Answer pairs of balls and solid tori in closed form ([`super::offset`]); `false`
+    /// Answer pairs of balls and solid tori in closed form ([`crate::query::kernel::ball_torus`]); `false`
     /// runs the traversal for them too (to measure it, or to compare the two).
     pub closed_form: bool,
 }
@@ -177,7 +177,7 @@ pub fn try_distance_cached(
 
 /// [`distance`] with a warm start from `cache`, which is updated.
 ///
-/// Solid semantics ([`super::overlap`]): the traversal bounds the distance between the
+/// Solid semantics ([`crate::query::traverse::overlap`]): the traversal bounds the distance between the
 /// boundary surfaces; overlap is reported only with a certificate (a point inside both true
 /// solids); when overlap can be neither certified nor excluded, `lower = 0`.
 pub fn distance_cached(
@@ -288,7 +288,7 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     }
 }
 
-/// The closed form for two balls or solid tori ([`super::offset`]) as a query answer:
+/// The closed form for two balls or solid tori ([`crate::query::kernel::ball_torus`]) as a query answer:
 /// overlap only with a point inside both true solids, `lower = 0` in the band around
 /// touching where neither overlap nor separation is certain.
 fn offset_result(a: &Solid, r: &OffsetDistance) -> Distance {

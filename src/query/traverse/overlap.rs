@@ -1,4 +1,4 @@
-//! Solid semantics of a query (DESIGN.md: solids, not surfaces): when the boundary surfaces
+//! Solid semantics of a query (solids, not surfaces: overlapping or nested solids are at distance 0): when the boundary surfaces
 //! may meet, or are apart but one solid may contain the other, decide whether the solids
 //! certainly overlap, certainly do not, or cannot be told apart at the trees' accuracy.
 //!
@@ -19,7 +19,7 @@
 //! `e_a + e_b` decides it for all of B (same argument as above, with the outside case
 //! symmetric).
 //!
-//! Every margin comparison adds the query's rounding slack (see [`mod@super::distance`]).
+//! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::traverse::distance`]).
 
 use crate::bvh::containment::{point_in_profile, point_in_solid};
 use crate::bvh::patch::{e_rho, lift};

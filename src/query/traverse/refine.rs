@@ -1,6 +1,6 @@
-//! Refinement of the witness points on the exact NURBS surfaces of revolution (issue 5,
-//! item 6): alternating closest-point projections between the two exact surfaces, started
-//! at the tree's witness points. A point's closest point on a surface of revolution is the
+//! Refinement of the witness points on the exact NURBS surfaces of revolution: alternating
+//! closest-point projections between the two exact surfaces, started at the tree's witness
+//! points. A point's closest point on a surface of revolution is the
 //! planar closest point of its meridian coordinates `(rho, z)` on the profile, found by
 //! Newton's method on `(C(t) - m) . C'(t) = 0` from the best of a coarse sampling. Each
 //! projection does not increase the distance, so the iteration converges to a local

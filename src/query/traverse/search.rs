@@ -2,12 +2,12 @@
 //! priority queue, upper bound from leaf patch distances plus their eps, lower bound from
 //! the queue's top; with the anytime budget of Johnson and Cohen (1997, section 3.1.3).
 //!
-//! Invariant (DESIGN.md): every queue key is a lower bound of the distance between the
+//! Invariant: every queue key is a lower bound of the distance between the
 //! original surface pieces under its node pair; pairs dropped because their key reached
 //! `upper - tolerance` are remembered in `pruned_min`. At any moment
 //! `min(queue top, pruned_min, upper)` is a lower bound of the surface distance, and
 //! `upper` is an upper bound (a realised patch distance plus both leaves' eps). A leaf pair
-//! is first given its stage-1 bounds ([`super::leaf`]) and re-inserted as "bounded" with key
+//! is first given its stage-1 bounds ([`crate::query::leaf`]) and re-inserted as "bounded" with key
 //! `lower - eps_a - eps_b`, or as "resolved" when the bounds are already tight; a bounded
 //! pair popped again gets the exact solve and becomes resolved; popping a resolved pair
 //! means nothing can be refined further.
@@ -42,10 +42,10 @@ pub struct Budget {
 pub struct TraversalStats {
     /// Node pairs popped from the queue.
     pub node_pairs: usize,
-    /// Leaf pairs settled or bounded by stage-1 bounds alone ([`super::leaf`]).
+    /// Leaf pairs settled or bounded by stage-1 bounds alone ([`crate::query::leaf`]).
     pub leaf_bounds: usize,
     /// Leaf pairs whose stage-1 bound was sharpened by sub-piece bounds before any exact
-    /// solve ([`super::leaf::LeafPair::tightened_lower`]).
+    /// solve ([`crate::query::leaf::LeafPair::tightened_lower`]).
     pub leaf_tightened: usize,
     /// Leaf pairs that went to the exact stage (some of their patch pairs solved exactly).
     pub leaf_tests: usize,
@@ -61,11 +61,11 @@ pub struct TraversalStats {
     pub bound_tests: usize,
     /// Largest queue length.
     pub max_queue: usize,
-    /// Queries answered by the closed form for balls and solid tori ([`super::offset`]),
+    /// Queries answered by the closed form for balls and solid tori ([`crate::query::kernel::ball_torus`]),
     /// without a traversal.
     pub closed_forms: usize,
     /// Patch pairs whose kernel needed a sampled scan, bounded below by subdivision
-    /// ([`super::certify`]).
+    /// ([`crate::query::leaf::subdivision`]).
     pub subdivided_pairs: usize,
     /// The budget stopped the traversal before the tolerance was reached.
     pub budget_exhausted: bool,
@@ -302,10 +302,10 @@ pub struct TraversalOptions {
 enum State {
     /// Key from node bounds only.
     Open,
-    /// Leaf pair with stage-1 bounds ([`super::leaf`]); an exact solve may narrow it.
+    /// Leaf pair with stage-1 bounds ([`crate::query::leaf`]); an exact solve may narrow it.
     Bounded,
     /// Bounded leaf pair whose lower bound was sharpened by sub-piece bounds
-    /// ([`super::leaf::LeafPair::tightened_lower`]); popped again, it is solved exactly.
+    /// ([`crate::query::leaf::LeafPair::tightened_lower`]); popped again, it is solved exactly.
     Tightened,
     /// Leaf pair whose interval nothing can narrow further.
     Resolved,
@@ -315,7 +315,7 @@ enum State {
 /// `warm` is a leaf pair whose realised upper bound starts the query instead of the dive's
 /// (frame coherence: the last frame's best leaf pair).
 ///
-/// Leaf pairs are evaluated in two stages ([`super::leaf`]): their stage-1 bounds when first
+/// Leaf pairs are evaluated in two stages ([`crate::query::leaf`]): their stage-1 bounds when first
 /// popped, the exact solve only if they are popped again, i.e. only while they still hold
 /// the query's lower bound and the tolerance is not met.
 pub fn traverse(

@@ -5,7 +5,7 @@
 
 use super::*;
 
-/// Fast exact path of [`boundary_vs_patch`] for a toroidal patch `o` (issue 11: no degree-8
+/// Fast exact path of [`boundary_vs_patch`] for a toroidal patch `o` (no degree-8
 /// solve in the common case). Let `m` be the minimum distance between the parallel `G` and
 /// the patch's major circle `M` (the circle module's certified minimum) and `x` its point
 /// on `G`. When `m` exceeds the tube radius `r`, `G` lies outside the solid torus (no
@@ -45,8 +45,8 @@ fn parallel_torus_fast(
 /// A lower bound of the distance from the boundary parallel `e` (frame G, placed in O's
 /// frame by `pos_og`) to the patch `o`, from circle/circle minima only: the parallel against
 /// the solid torus of the disk around `o`'s piece and, for an arc, of the arc's own circle
-/// (both contain the patch; [`crate::query::bounds`] and [`crate::query::patch_bound`] give the proofs),
-/// after the closed-form hull bound of [`crate::query::hull::hull_bound`].
+/// (both contain the patch; [`crate::query::bound::node_pair`] and [`crate::query::leaf::patch_lower`] give the proofs),
+/// after the closed-form hull bound of [`crate::query::bound::hull_bound::hull_bound`].
 /// Returns early once a bound reaches `enough`. A parallel that is a point gets no bound
 /// (its exact distance is cheaper).
 pub(super) fn parallel_lower_bound(

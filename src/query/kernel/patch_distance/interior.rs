@@ -1,5 +1,5 @@
 //! Case (a) of [`super`] for a toroidal patch: common normals through the major circle's
-//! critical points against the other patch's core ([`crate::query::sweep`]), their feet and
+//! critical points against the other patch's core ([`crate::query::angles::radial_field`]), their feet and
 //! the signs `l +- r1 +- r2` (paper section 3), with the continua that have closed forms (a
 //! sphere centre on the other axis).
 

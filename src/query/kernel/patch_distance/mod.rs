@@ -11,7 +11,7 @@
 //! * (a) toroidal patch vs anything: a common normal meets the major circle `M` of the
 //!   toroidal patch at a right angle, so its foot `P` on `M` is a critical point of the
 //!   distance from `M(theta)` to the other patch's core (profile-circle centre or cone
-//!   line, both mirrored branches); [`super::sweep::critical_angles`] finds those angles. From `P`
+//!   line, both mirrored branches); [`crate::query::angles::radial_field::critical_angles`] finds those angles. From `P`
 //!   the critical feet `q` on the other patch give the line, and the toroidal patch's
 //!   points on that line are `P +- r u` (the signs l +- r1 +- r2 of the paper), kept when
 //!   their arc angle is in range (inclusive).
@@ -31,9 +31,9 @@
 //!
 //! Where a polynomial kernel reports a degenerate configuration that has no closed form
 //! here (intersecting major circles, non-coaxial continua of binormals), the critical angles
-//! come from the sampled scan of [`super::sweep`] and [`PatchDistance::sampled`] is set: the
+//! come from the sampled scan of [`crate::query::angles::radial_field`] and [`PatchDistance::sampled`] is set: the
 //! distance is then a realised pair (an upper bound) and the caller bounds the pair from
-//! below by subdivision ([`super::certify`]). The continua with a closed form are exact:
+//! below by subdivision ([`crate::query::leaf::subdivision`]). The continua with a closed form are exact:
 //! coaxial circles (constant distance), a circle parallel to a flat annulus, a sphere centre
 //! on the other patch's axis.
 //!
@@ -85,9 +85,9 @@ pub struct PatchDistance {
     pub point_b: Point3<f64>,
     /// Interior common normals (point on A, point on B), for penetration tests.
     pub interior_pairs: Vec<(Point3<f64>, Point3<f64>)>,
-    /// Some candidates came from a sampled scan ([`super::sweep`]): `distance` is then only an
+    /// Some candidates came from a sampled scan ([`crate::query::angles::radial_field`]): `distance` is then only an
     /// upper bound of the patch distance (two real surface points), and a lower bound must
-    /// come from elsewhere ([`super::certify`]).
+    /// come from elsewhere ([`crate::query::leaf::subdivision`]).
     pub sampled: bool,
 }
 
@@ -109,11 +109,11 @@ impl Best {
 /// How critical angles along circles are found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Kernel {
-    /// Binormals of circles from the degree-8 polynomial (paper 3.2, [`super::binormal_kernel`]),
+    /// Binormals of circles from the degree-8 polynomial (paper 3.2, [`crate::query::angles::common_normals`]),
     /// with the sampled scan only where a continuum of binormals makes it ill-posed.
     #[default]
     Binormals,
-    /// The sampled scan of [`super::sweep`] everywhere (an independent second method for tests).
+    /// The sampled scan of [`crate::query::angles::radial_field`] everywhere (an independent second method for tests).
     Sweep,
 }
 
