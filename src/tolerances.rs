@@ -5,7 +5,7 @@
 //! inclusive test of a kernel can move a candidate off the exact surfaces, and the query
 //! widens its interval by the sum ([`crate::query::traverse::distance::query_slack`]). The
 //! two sums are [`POSE_SLACK_REL`] (terms that grow with the pose) and [`SIZE_SLACK_REL`]
-//! (terms that grow with the pieces); the unit test below checks that each covers its terms.
+//! (terms that grow with the pieces); the tests below check, at compile time, that each covers its terms.
 //! The other constants are decision thresholds (when two axes count as one, when a fast path
 //! may answer) and stopping rules of iterations; none of them widens the interval, each says
 //! why it cannot make a bound wrong.
@@ -163,21 +163,21 @@ mod tests {
     /// snap (axis direction and offset).
     #[test]
     fn pose_slack_covers_its_terms() {
-        assert!(POSE_SLACK_REL >= BOUND_SLACK + 2.0 * AXIS_TOLERANCE);
+        const { assert!(POSE_SLACK_REL >= BOUND_SLACK + 2.0 * AXIS_TOLERANCE) };
     }
 
     /// The size-proportional slack covers its terms: two parallels snapped to points, a
     /// foot off an arc's angle range and one off a segment's parameter range.
     #[test]
     fn size_slack_covers_its_terms() {
-        assert!(SIZE_SLACK_REL >= 2.0 * POINT_SNAP + ANGLE_SLACK + SEGMENT_SLACK);
+        const { assert!(SIZE_SLACK_REL >= 2.0 * POINT_SNAP + ANGLE_SLACK + SEGMENT_SLACK) };
     }
 
     /// A settled pair cannot hide more than the query's own slack: the settle threshold is
     /// above the pose slack it must not undercut, and the fast path's agreement is within it.
     #[test]
     fn thresholds_sit_inside_the_budget() {
-        assert!(SETTLE_REL >= POSE_SLACK_REL);
-        assert!(FAST_PATH_REL + BOUND_SLACK <= POSE_SLACK_REL);
+        const { assert!(SETTLE_REL >= POSE_SLACK_REL) };
+        const { assert!(FAST_PATH_REL + BOUND_SLACK <= POSE_SLACK_REL) };
     }
 }
