@@ -8,8 +8,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use revdist::models::model;
-use revdist::query::bounds::{node_pair_bound, BoundKind};
-use revdist::query::tree::Disk;
+use revdist::query::bound::{node_pair_bound, BoundKind};
 use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use std::hint::black_box;
@@ -180,9 +179,9 @@ fn patch_kernels(c: &mut Criterion) {
     // Stage 1 of a leaf pair (issue 11): the cheap lower bound and realised upper bound.
     group.bench_function("stage1_bounds", |bench| {
         bench.iter(|| {
-            let mut memo = revdist::query::patch_bound::CoreMemo::default();
+            let mut memo = revdist::query::leaf::patch_lower::CoreMemo::default();
             for (a, b, pose) in &cases {
-                black_box(revdist::query::patch_bound::patch_bounds(
+                black_box(revdist::query::leaf::patch_upper::patch_bounds(
                     a, b, pose, &mut memo,
                 ));
             }
@@ -193,8 +192,8 @@ fn patch_kernels(c: &mut Criterion) {
         bench.iter(|| {
             for (a, b, pose) in &cases {
                 black_box(node_pair_bound(
-                    &Disk::around(&a.arc),
-                    &Disk::around(&b.arc),
+                    &a.arc.bounding_disk(),
+                    &b.arc.bounding_disk(),
                     pose,
                     BoundKind::Torus,
                     f64::INFINITY,

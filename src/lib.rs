@@ -7,10 +7,13 @@
 //! volume hierarchy of fat toroidal patches, and the distance between two patches reduces
 //! to the binormals of two circles in space.
 //!
-//! Data flows one way: [`nurbs`] curves form a [`profile`]; built-in profiles live in
-//! [`models`].
+//! Data flows one way: [`nurbs`] curves form a [`profile`] (built-in profiles live in
+//! [`models`]); [`biarc`] trees approximate it; [`bvh`] revolves them into the hierarchy of
+//! patches a [`solid`] holds; [`query`] measures two posed solids. Every slack and tolerance
+//! of the query is in [`tolerances`].
 
 pub mod biarc;
+pub mod bvh;
 pub mod circle;
 pub mod limits;
 pub mod models;
@@ -23,3 +26,6 @@ pub mod query;
 pub mod solid;
 pub mod svg;
 pub mod tessellate;
+#[cfg(test)]
+pub(crate) mod test_rng;
+pub mod tolerances;

@@ -1,11 +1,11 @@
 //! Small numeric helpers shared by the geometry kernels.
 
 /// `sqrt(x^2 + y^2)`, correctly rounded to within 1.5 ulp, without the cost of libm's
-/// `hypot` (a third of a node bound's time went to `hypot`, issue 11). Squares overflow
+/// `hypot` (a third of a node bound's time went to `hypot`). Squares overflow
 /// above 1e154 and underflow below 1e-154; there, and for non-finite input, the sum is
 /// out of the range kept here and `hypot` answers instead, so the result is always within
 /// 1.5 ulp of the true length. Every bound that uses it subtracts
-/// [`crate::query::bounds::BOUND_SLACK`] (1e-11 of the scale), far above that rounding.
+/// [`crate::tolerances::BOUND_SLACK`] (1e-11 of the scale), far above that rounding.
 #[inline]
 pub fn norm2(x: f64, y: f64) -> f64 {
     let s = x * x + y * y;
@@ -19,13 +19,13 @@ pub fn norm2(x: f64, y: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::norm2;
-    use crate::query::patch_distance::tests::Rng;
+    use crate::test_rng::Lcg;
 
     /// Agrees with `hypot` to 1.5 ulp over magnitudes from 1e-200 to 1e200, including
     /// zeros, one-sided inputs and the fallback ranges.
     #[test]
     fn matches_hypot() {
-        let mut rng = Rng(0x2545_f491);
+        let mut rng = Lcg(0x2545_f491);
         let mut next = move || rng.f();
         for _ in 0..200_000 {
             let ex = (next() * 400.0 - 200.0).round() as i32;

@@ -1,13 +1,13 @@
 //! A posed solid of revolution: a shared bounding hierarchy, optionally the exact profile,
 //! and a rigid pose.
 //!
-//! Pose convention (issue 5): a point `x` of the solid's own frame (axis of revolution =
+//! Pose convention: a point `x` of the solid's own frame (axis of revolution =
 //! local z axis) is at `R x + t` in the world frame, `R` a unit quaternion. For a pair of
 //! solids the relative pose `pos_ab = pose_a^-1 * pose_b` places B in A's frame.
 
 use crate::biarc::{BiarcTree, TreeError};
+use crate::bvh::QueryTree;
 use crate::profile::Profile;
-use crate::query::tree::QueryTree;
 use nalgebra::{Isometry3, Point3};
 use std::sync::Arc;
 

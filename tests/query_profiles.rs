@@ -213,7 +213,7 @@ fn refinement_is_accurate_below_eps() {
 /// give exactly the cold traversal (both dive).
 #[test]
 fn warm_starts_only_choose_the_first_leaf_pair() {
-    use revdist::query::bounds::BoundKind;
+    use revdist::query::bound::BoundKind;
     use revdist::query::traverse::{traverse, Budget, TraversalOptions};
     let vase = Solid::from_profile(Arc::new(vase()), 1e-4).unwrap();
     let ring = Solid::from_profile(Arc::new(ring()), 1e-4).unwrap();

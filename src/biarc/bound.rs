@@ -10,7 +10,7 @@
 //! of its height in the pencil of circles through `A, B`, so the two-sided Hausdorff distance
 //! between the spiral and either wall is at most the apex separation
 //! `w = h |tan(phi_a / 2) - tan(phi_b / 2)|` (`h` the half chord, `phi_a, phi_b` the
-//! tangent-chord angles; derivation in `notes/biarcs.md` section 2.1).
+//! tangent-chord angles; derivation in `docs/numerics.md`, "Biarcs: the spiral lens").
 //!
 //! **Bilens.** With the joint `J = C(t_J)` *on the curve*, the first biarc arc is exactly the
 //! `T_A` wall of lens(A, J) and the second exactly the `T_B` wall of lens(J, B); hence

@@ -120,7 +120,7 @@ impl FittedBiarc {
     }
 }
 
-/// Required G1 continuity at the joint (issue 4): 1e-12 rad.
+/// Required G1 continuity at the joint: 1e-12 rad.
 pub const G1_TOL: f64 = 1e-12;
 
 /// The joint is a curve point known to a few ulps of the coordinates, so an arc of length `l`

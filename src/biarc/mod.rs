@@ -7,6 +7,7 @@
 pub mod arc;
 pub mod arc_deviation;
 pub mod bound;
+pub mod disk;
 pub mod fit;
 pub mod oracle;
 pub mod span;
@@ -18,9 +19,10 @@ pub mod tree;
 mod tree_tests;
 
 pub use arc::Arc;
+pub use disk::Disk;
 pub use fit::{fit_biarc, CurveSample, FittedBiarc, PlanarCurve};
 pub use tree::{
-    BiarcNode, BiarcTree, Disk, NodeId, SpiralBound, SpiralInfo, TreeError, TreeStats, UpperNode,
+    BiarcNode, BiarcTree, NodeId, SpiralBound, SpiralInfo, TreeError, TreeStats, UpperNode,
 };
 
 /// Errors of biarc fitting, spiral segmentation and tree building.

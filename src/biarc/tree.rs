@@ -38,6 +38,7 @@ use nalgebra::{Point2, Vector2};
 use super::arc::{cross, Arc};
 use super::arc_deviation::{ArcFrame, PieceArcDeviation};
 use super::bound::ulp_slack;
+use super::disk::Disk;
 use super::fit::{fit_biarc, g1_tolerance, CurveSample, PlanarCurve};
 use super::span::{SpanCurve, MAX_SPAN_DEGREE};
 use super::spiral::split_span;
@@ -127,15 +128,6 @@ pub enum TreeError {
         /// The bound of the deepest node.
         reached: f64,
     },
-}
-
-/// A disk in the (rho, z) plane.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Disk {
-    /// Centre.
-    pub center: Point2<f64>,
-    /// Radius.
-    pub radius: f64,
 }
 
 /// One node of a spiral's biarc tree.

@@ -649,7 +649,7 @@ const AXES_MEET_REL: f64 = 1e-15;
 /// axes are nearly parallel and the sphere radii below lose digits to cancellation.
 const AXES_MEET_FAR: f64 = 1e3;
 
-/// Closed-form minimum for circles whose axes meet at a point `O` (issue 11): both circles
+/// Closed-form minimum for circles whose axes meet at a point `O`: both circles
 /// lie on spheres about `O`, of radii `rho_a = |A(t) - O|`, `rho_b`, and as seen from `O`
 /// they are small circles of angular radii `alpha_a`, `alpha_b` about their axis directions
 /// `u_a`, `u_b` (oriented from `O` to each centre), `beta` apart. For points at angle

@@ -3,7 +3,7 @@
 //! Let f(theta) be the distance from B(theta) to circle A (closed form, see
 //! [`super::descent`]). A descent from the best of a few samples gives a local minimum
 //! m = f(t). Whether any theta has f(theta) < m is then decided exactly, up to rounding of a
-//! few coefficients, by a quartic (Vranek 2002; research notes section 1c): with
+//! few coefficients, by a quartic (Vranek 2002; `docs/numerics.md` section 1c): with
 //! T1 = |B|^2 + ra^2 and T2 = Bx^2 + By^2 (A in its own frame),
 //!
 //! `Q(theta) = (T1 - m^2)^2 - 4 ra^2 T2 = (f^2 - m^2) (f_far^2 - m^2)`,

@@ -29,7 +29,7 @@ pub const PARALLEL_SIN_TOL: f64 = 1e-14;
 
 /// Relative tolerance (of the configuration scale) under which two distances are a tie, a
 /// point is on an axis, or a distance function is constant. It is the accuracy the solver
-/// guarantees (issue 3: 1e-12 relative), so ties below it cannot be resolved anyway.
+/// guarantees (1e-12 relative, checked against exact arithmetic by `verify circles`), so ties below it cannot be resolved anyway.
 pub const TIE_REL_TOL: f64 = 1e-12;
 
 /// Errors from building circles.

@@ -1,5 +1,5 @@
 //! Circles in parallel planes (including coplanar and coaxial): closed-form 2-D analysis of
-//! the projections along the common normal (research notes section 3, "Coplanar circles").
+//! the projections along the common normal (`docs/numerics.md` section 3, "Coplanar circles").
 
 use super::frame::LocalPair;
 use super::{Multiplicity, TIE_REL_TOL};

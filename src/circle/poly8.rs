@@ -1,5 +1,5 @@
 //! The degree-8 binormal polynomial of two circles in half-angle form (equivalent to paper
-//! Appendix A; research notes `circle_distance.md` section 1b).
+//! Appendix A; `docs/numerics.md` section 1b).
 //!
 //! Circle A: radius ra at the origin, normal +z. Circle B(theta) = C + rb (cos theta U +
 //! sin theta V). With q the projection of B(theta) into A's plane and rho = |q|, a binormal

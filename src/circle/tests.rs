@@ -1,8 +1,9 @@
-//! Circle/circle tests: analytic catalogue (research notes section 2.1 table), an independent
+//! Circle/circle tests: analytic catalogue (`docs/numerics.md` section 2.1), an independent
 //! sampling oracle, perturbations, rigid motions and property tests.
 
 use super::*;
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use crate::test_rng::SplitMix64;
+use nalgebra::{Point3, Vector3};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
@@ -193,40 +194,6 @@ fn catalogue_matches_analytic_and_oracle() {
     }
 }
 
-/// Deterministic generator for test configurations (SplitMix64).
-pub(crate) struct Rng(u64);
-impl Rng {
-    pub fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-    pub fn unit(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
-        }
-    }
-    pub fn motion(&mut self, shift: f64) -> Isometry3<f64> {
-        let axis = nalgebra::Unit::new_normalize(self.unit());
-        let rot = UnitQuaternion::from_axis_angle(&axis, self.range(0.0, TAU));
-        let t = self.unit() * self.range(0.0, shift);
-        Isometry3::from_parts(Translation3::from(t), rot)
-    }
-}
-
 /// Perturbations applied to circle B: centre x, centre y, tilt of the normal, radius.
 fn perturbed(b: &Circle3, kind: usize, eps: f64) -> Circle3 {
     let mut out = *b;
@@ -245,7 +212,7 @@ fn perturbed(b: &Circle3, kind: usize, eps: f64) -> Circle3 {
 #[test]
 fn catalogue_perturbed_and_moved() {
     let a = unit_a();
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64(7);
     let mut worst = 0.0f64;
     for (name, b, _, _) in catalogue() {
         for kind in 0..4 {
@@ -299,7 +266,7 @@ fn nearly_parallel_planes() {
 
 #[test]
 fn radius_ratios_and_distances() {
-    let mut rng = Rng(11);
+    let mut rng = SplitMix64(11);
     for ratio in [1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6] {
         for gap in [1e-12, 1e-6, 1.0, 1e3, 1e6] {
             // B of radius `ratio` placed so that its nearest point to A is `gap` away along
@@ -369,7 +336,7 @@ fn assert_binormal(a: &Circle3, b: &Circle3, bn: &Binormal, scale: f64) {
 
 #[test]
 fn random_pairs_have_4_6_or_8_binormals_and_restriction_is_consistent() {
-    let mut rng = Rng(3);
+    let mut rng = SplitMix64(3);
     let mut counts = [0usize; 17];
     for _ in 0..2000 {
         let a = Circle3::new(
@@ -446,7 +413,7 @@ proptest! {
 
     #[test]
     fn rigid_motion_and_scale_invariant(a in arb_circle(2.0), b in arb_circle(2.0), seed in 0u64..1000, s in 1e-3f64..1e3) {
-        let iso = Rng(seed).motion(100.0);
+        let iso = SplitMix64(seed).motion(100.0);
         let d = min_distance(&a, &b).distance;
         let dm = min_distance(&a.transformed(&iso), &b.transformed(&iso)).distance;
         let ds = min_distance(&a.scaled(s), &b.scaled(s)).distance;
@@ -1014,7 +981,7 @@ fn eight_binormals_pinned() {
 /// and its answer agrees with the dense-sampling oracle (to the oracle's accuracy, 1e-9).
 #[test]
 fn general_pairs_are_certified_and_agree_with_the_oracle() {
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64(5);
     let mut certified_count = 0;
     for _ in 0..300 {
         let a = Circle3::new(
@@ -1050,7 +1017,7 @@ fn general_pairs_are_certified_and_agree_with_the_oracle() {
 /// point and nearly parallel axes) and radii, against the sampled-and-polished oracle.
 #[test]
 fn intersecting_axes_match_the_oracle() {
-    let mut rng = Rng(77);
+    let mut rng = SplitMix64(77);
     let mut cases = 0;
     for k in 0..400 {
         let o = Point3::from(rng.unit() * rng.range(0.0, 2.0));
@@ -1090,7 +1057,7 @@ fn intersecting_axes_match_the_oracle() {
 /// bit, on random pairs (general, intersecting axes, parallel) and the degenerate catalogue.
 #[test]
 fn value_only_matches_min_distance() {
-    let mut rng = Rng(91);
+    let mut rng = SplitMix64(91);
     let mut pairs = verify_regressions()
         .into_iter()
         .map(|(a, b, _)| (a, b))

@@ -1,5 +1,5 @@
 //! Certified tessellation of a solid of revolution: a closed triangle mesh whose two-sided
-//! Hausdorff distance to the true surface is at most a requested `eps` (issue 12), for use as
+//! Hausdorff distance to the true surface is at most a requested `eps`, for use as
 //! the baseline meshes of mesh-based distance libraries (FCL, libccd, CGAL in `verify/`).
 //!
 //! # Construction

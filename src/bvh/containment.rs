@@ -1,0 +1,201 @@
+//! Point-in-solid tests: a point is inside a solid of revolution when its meridian
+//! coordinates `(rho, z)` lie inside the profile region, which is the area inside a closed
+//! profile loop, or for an open-on-axis profile the area enclosed by the chain and the axis
+//! segment joining its ends (solids, not surfaces: a query between overlapping or nested solids answers 0).
+//!
+//! The test is a winding number of the approximating chain (arcs and segments), with the
+//! closing axis segment for open profiles. Its `margin` is the distance of the point from
+//! the chain; when `margin > eps` of the tree the classification holds for the original
+//! profile too (the original curve stays within eps of the chain, so it cannot pass
+//! between the point and the chain).
+
+use super::patch::{cross2, ProfileArc};
+use super::tree::QueryTree;
+use crate::profile::ProfileKind;
+use crate::tolerances::AXIS_NUDGE;
+use nalgebra::{Point2, Point3};
+use std::f64::consts::TAU;
+
+/// Sweep (radians) above which an arc's bulge side is read from its midpoint (sagitta at
+/// least `r (1 - cos 0.5) ~ 0.12 r`, far above rounding); below it, from its centre.
+const MID_SIDE_SWEEP: f64 = 1.0;
+
+/// Classification of a point against a profile region.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inside {
+    pub inside: bool,
+    /// Distance from the point to the approximating boundary chain.
+    pub margin: f64,
+}
+
+/// Signed angle swept by `piece` as seen from `x`.
+fn swept_angle(piece: &ProfileArc, x: Point2<f64>) -> f64 {
+    let (a, b) = (piece.start() - x, piece.end() - x);
+    let chord = cross2(a, b).atan2(a.dot(&b));
+    match *piece {
+        ProfileArc::Segment { .. } => chord,
+        ProfileArc::Arc {
+            center,
+            radius,
+            sweep,
+            ..
+        } => {
+            // The loop "arc, then chord back" winds once around points of the circular
+            // segment between them: inside the circle and on the arc's side of the chord.
+            let inside_circle = (x - center).norm() < radius;
+            let (s, e) = (piece.start(), piece.end());
+            // Side of the chord the arc bulges to: the midpoint's side for arcs that turn
+            // enough for the midpoint to stand clear of the chord; for flatter arcs (whose
+            // sagitta may be below rounding) the side opposite the centre, which is then far
+            // from the chord (a minor arc bulges away from its centre).
+            let side_mid = if sweep.abs() >= MID_SIDE_SWEEP {
+                cross2(e - s, piece.point_at(0.5) - s)
+            } else {
+                -cross2(e - s, center - s)
+            };
+            let side_x = cross2(e - s, x - s);
+            let in_segment = inside_circle && side_mid * side_x > 0.0;
+            let full = sweep.abs() >= TAU - 1e-12;
+            if full {
+                return if inside_circle {
+                    sweep.signum() * TAU
+                } else {
+                    0.0
+                };
+            }
+            if in_segment {
+                chord + sweep.signum() * TAU
+            } else {
+                chord
+            }
+        }
+    }
+}
+
+/// Classifies the meridian point `m` (rho >= 0) against the tree's profile region.
+///
+/// With the tree's chain index ([`QueryTree::node_ends`]) whole subtrees are skipped: the
+/// pieces under a node and the chord between their first and last points form a closed
+/// loop inside the node's disk, so for a point outside the disk the pieces sweep exactly the
+/// chord's angle; and their distance to the point is at least its distance to the disk.
+/// Without the index every piece is visited.
+pub fn point_in_profile(tree: &QueryTree, m: Point2<f64>) -> Inside {
+    let mut total = 0.0;
+    let mut margin = f64::INFINITY;
+    // A point on the axis is classified like its neighbours at small rho > 0 (the axis
+    // closure of an open profile is interior to the solid, not boundary).
+    let w = Point2::new(m.x.max(AXIS_NUDGE * (1.0 + m.coords.norm())), m.y);
+    if tree.node_ends.is_empty() {
+        for p in &tree.chain {
+            total += swept_angle(p, w);
+            margin = margin.min(p.closest_point(m).0);
+        }
+    } else {
+        descend(tree, tree.root, w, m, &mut total, &mut margin);
+    }
+    if tree.kind == ProfileKind::OpenOnAxis {
+        if let (Some(first), Some(last)) = (tree.chain.first(), tree.chain.last()) {
+            let closing = ProfileArc::Segment {
+                start: last.end(),
+                end: first.start(),
+            };
+            total += swept_angle(&closing, w);
+        }
+    }
+    Inside {
+        inside: (total / TAU).round() != 0.0,
+        margin,
+    }
+}
+
+/// Winding and margin contributions of the pieces under `id` (see [`point_in_profile`]).
+fn descend(
+    tree: &QueryTree,
+    id: u32,
+    w: Point2<f64>,
+    m: Point2<f64>,
+    total: &mut f64,
+    margin: &mut f64,
+) {
+    let n = &tree.nodes[id as usize];
+    let Some([s, e]) = tree.node_ends[id as usize] else {
+        return;
+    };
+    let (c, r) = (n.bound.center, n.bound.radius);
+    if (w - c).norm() > r && (m - c).norm() - r >= *margin {
+        let (a, b) = (s - w, e - w);
+        *total += cross2(a, b).atan2(a.dot(&b));
+        return;
+    }
+    if n.is_leaf() {
+        for p in &tree.chain[n.patch_start as usize..n.patch_end as usize] {
+            *total += swept_angle(p, w);
+            *margin = margin.min(p.closest_point(m).0);
+        }
+        return;
+    }
+    // Nearer child first: its margin prunes more of the other.
+    let [c0, c1] = n.children;
+    let dist = |k: u32| (m - tree.nodes[k as usize].bound.center).norm();
+    let (first, second) = if dist(c0) <= dist(c1) {
+        (c0, c1)
+    } else {
+        (c1, c0)
+    };
+    descend(tree, first, w, m, total, margin);
+    descend(tree, second, w, m, total, margin);
+}
+
+/// Classifies a point given in the solid's local frame.
+pub fn point_in_solid(tree: &QueryTree, x: &Point3<f64>) -> Inside {
+    point_in_profile(tree, Point2::new(x.x.hypot(x.y), x.z))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn sphere_and_ring_regions() {
+        // Sphere of radius 1: half circle from the south pole to the north pole (open).
+        let sphere = QueryTree::from_exact_pieces(
+            &[ProfileArc::Arc {
+                center: Point2::new(0.0, 0.0),
+                radius: 1.0,
+                phi_start: -PI / 2.0,
+                sweep: PI,
+            }],
+            ProfileKind::OpenOnAxis,
+            0.3,
+            0.3,
+        );
+        for (m, inside) in [
+            ((0.5, 0.5), true),
+            ((0.0, 0.9), true),
+            ((0.9, 0.9), false),
+            ((2.0, 0.0), false),
+            ((0.1, -0.99), true),
+        ] {
+            let r = point_in_profile(&sphere, Point2::new(m.0, m.1));
+            assert_eq!(r.inside, inside, "{m:?}");
+            let truth = (m.0 * m.0 + m.1 * m.1).sqrt();
+            assert!((r.margin - (truth - 1.0).abs()).abs() < 1e-12);
+        }
+        // Ring: full circle of radius 0.3 around (1, 0), clockwise.
+        let ring = QueryTree::from_exact_pieces(
+            &[ProfileArc::Arc {
+                center: Point2::new(1.0, 0.0),
+                radius: 0.3,
+                phi_start: 0.0,
+                sweep: -2.0 * PI,
+            }],
+            ProfileKind::Closed,
+            0.5,
+            0.5,
+        );
+        assert!(point_in_profile(&ring, Point2::new(1.1, 0.1)).inside);
+        assert!(!point_in_profile(&ring, Point2::new(0.5, 0.0)).inside);
+        assert!(!point_in_profile(&ring, Point2::new(1.0, 0.5)).inside);
+    }
+}

@@ -1,0 +1,324 @@
+//! The distance query between two posed solids: Algorithm 2 over the boundary surfaces
+//! ([`crate::query::traverse::search`]), then solid semantics (overlap and nesting give 0,
+//! [`crate::query::traverse::overlap`]), optional refinement on the exact surfaces, and frame coherence
+//! through a [`QueryCache`].
+//!
+//! Certification: the traversal bounds the distance between the boundary surfaces; the
+//! interval is widened by the query's rounding slack ([`query_slack`]: every snap and
+//! tolerance of the kernels). Solids that do not overlap have the surfaces' distance;
+//! overlapping or nested solids have distance 0. `overlap = true` (with
+//! `lower = upper = 0`) only with a certificate: a point inside both true solids. When
+//! overlap can be neither certified nor excluded at the trees' accuracy, `lower = 0`.
+
+use super::overlap::{certify_overlap, nesting, Verdict};
+use super::refine::refine_on_profiles;
+use super::search::{traverse, Budget, TraversalOptions, TraversalStats};
+use crate::bvh::QueryTree;
+use crate::query::bound::node_pair::BoundKind;
+use crate::query::kernel::ball_torus::{offset_distance, OffsetDistance};
+use crate::solid::Solid;
+pub use crate::tolerances::{POSE_SLACK_REL, SIZE_SLACK_REL};
+use nalgebra::{Isometry3, Point3};
+
+/// How wide the certified interval `upper - lower` may be when the query stops.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Tolerance {
+    /// The accuracy the trees were built for: `upper - lower <= eps_a + eps_b`, the
+    /// trees' requested bounds ([`QueryTree::target_eps`]). Then `|value - distance| <= eps_a + eps_b`, the error bound a distance between
+    /// two meshes of Hausdorff error `eps_a` and `eps_b` has.
+    #[default]
+    Trees,
+    /// `upper - lower <= T` (absolute, length units); `0` runs until nothing can be
+    /// narrowed further.
+    Absolute(f64),
+}
+
+impl Tolerance {
+    /// The absolute width for trees of bounds `eps_a`, `eps_b`.
+    pub fn width(self, eps_a: f64, eps_b: f64) -> f64 {
+        match self {
+            Tolerance::Trees => eps_a + eps_b,
+            Tolerance::Absolute(t) => t.max(0.0),
+        }
+    }
+}
+
+/// What the caller asks of a query.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QueryOptions {
+    /// When to stop ([`Tolerance`]). The trees' eps limit what is reachable: a leaf pair's
+    /// own interval is `2 (e_a + e_b)` wide, `e` the leaves' eps, so a query stops at the
+    /// requested width or at the narrowest interval its leaves allow, whichever is wider.
+    pub tolerance: Tolerance,
+    /// Anytime budget.
+    pub budget: Budget,
+    /// Node-pair bound used for inner nodes.
+    pub bound: BoundKind,
+    /// Refine the witness points on the exact NURBS surfaces (needs the profiles).
+    pub refine: bool,
+    /// Answer pairs of balls and solid tori in closed form ([`crate::query::kernel::ball_torus`]); `false`
+    /// runs the traversal for them too (to measure it, or to compare the two).
+    pub closed_form: bool,
+}
+
+impl Default for QueryOptions {
+    fn default() -> Self {
+        QueryOptions {
+            tolerance: Tolerance::Trees,
+            budget: Budget::default(),
+            bound: BoundKind::default(),
+            refine: false,
+            closed_form: true,
+        }
+    }
+}
+
+/// Result of a distance query. Points are in the world frame (A's frame when A sits at
+/// the identity, as in the CLI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Distance {
+    /// Best estimate, inside `[lower, upper]`.
+    pub value: f64,
+    /// Certified lower bound of the distance between the solids.
+    pub lower: f64,
+    /// Certified upper bound.
+    pub upper: f64,
+    /// Witness point on A (approximating surface, or exact surface after refinement).
+    pub point_a: Point3<f64>,
+    /// Witness point on B.
+    pub point_b: Point3<f64>,
+    /// The solids certainly overlap or nest (then `value = lower = upper = 0`).
+    pub overlap: bool,
+    pub stats: TraversalStats,
+}
+
+/// Frame coherence for sequences of queries on the same pair: the best leaf pair of the
+/// last query gives the next query its first upper bound (a realised pair of that leaf
+/// pair, instead of the one a dive along bounding spheres reaches).
+#[derive(Debug, Clone, Default)]
+pub struct QueryCache {
+    last_pair: Option<(u32, u32)>,
+}
+
+/// Distance between two posed solids.
+pub fn distance(a: &Solid, b: &Solid, opts: &QueryOptions) -> Distance {
+    distance_cached(a, b, opts, &mut QueryCache::default())
+}
+
+/// Largest configuration scale a query accepts: squared lengths of up to `1e300` stay
+/// finite. Beyond it [`distance`] returns the trivial certificate `[0, inf]` and
+/// [`try_distance`] an error.
+pub const MAX_SCALE: f64 = 1e150;
+
+/// Why a query cannot be answered.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum QueryError {
+    /// A pose has a NaN or infinite component.
+    #[error("pose is not finite")]
+    NonFinitePose,
+    /// The solids are too far apart or too large for double precision.
+    #[error("configuration scale {scale:e} (translation plus solid sizes) exceeds the representable range {MAX_SCALE:e}")]
+    OutOfRange { scale: f64 },
+    /// A solid has an empty tree.
+    #[error("solid has no surface (empty tree)")]
+    EmptySolid,
+}
+
+fn extent(t: &QueryTree) -> f64 {
+    t.nodes
+        .get(t.root as usize)
+        .map_or(0.0, |n| n.bound.center.coords.norm() + n.bound.radius)
+}
+
+/// The absolute rounding slack of a query between `ta` and `tb` at `pos_ab`
+/// ([`POSE_SLACK_REL`], [`SIZE_SLACK_REL`]).
+pub fn query_slack(ta: &QueryTree, tb: &QueryTree, pos_ab: &Isometry3<f64>) -> f64 {
+    let size = extent(ta) + extent(tb);
+    POSE_SLACK_REL * (1.0 + pos_ab.translation.vector.norm() + size) + SIZE_SLACK_REL * size
+}
+
+/// Checks that a query between `a` and `b` is within the representable range.
+pub fn check_query(a: &Solid, b: &Solid) -> Result<(), QueryError> {
+    let finite = |p: &Isometry3<f64>| {
+        p.translation.vector.iter().all(|x| x.is_finite())
+            && p.rotation.coords.iter().all(|x| x.is_finite())
+    };
+    if !finite(&a.pose) || !finite(&b.pose) {
+        return Err(QueryError::NonFinitePose);
+    }
+    if a.tree.nodes.is_empty() || b.tree.nodes.is_empty() {
+        return Err(QueryError::EmptySolid);
+    }
+    let t = a.relative_pose(b).translation.vector;
+    let tmax = t.amax();
+    let scale = 1.0 + tmax + extent(&a.tree) + extent(&b.tree);
+    // NaN fails `is_finite`; a finite scale must not exceed the range.
+    if !scale.is_finite() || scale > MAX_SCALE {
+        return Err(QueryError::OutOfRange { scale });
+    }
+    Ok(())
+}
+
+/// [`distance`], with an error for poses outside the representable range.
+pub fn try_distance(a: &Solid, b: &Solid, opts: &QueryOptions) -> Result<Distance, QueryError> {
+    try_distance_cached(a, b, opts, &mut QueryCache::default())
+}
+
+/// [`distance_cached`], with an error for poses outside the representable range.
+pub fn try_distance_cached(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+    cache: &mut QueryCache,
+) -> Result<Distance, QueryError> {
+    check_query(a, b)?;
+    Ok(checked_distance(a, b, opts, cache))
+}
+
+/// [`distance`] with a warm start from `cache`, which is updated.
+///
+/// Solid semantics ([`crate::query::traverse::overlap`]): the traversal bounds the distance between the
+/// boundary surfaces; overlap is reported only with a certificate (a point inside both true
+/// solids); when overlap can be neither certified nor excluded, `lower = 0`.
+pub fn distance_cached(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+    cache: &mut QueryCache,
+) -> Distance {
+    // Outside the representable range the only certificate is the trivial one.
+    try_distance_cached(a, b, opts, cache).unwrap_or(Distance {
+        value: f64::INFINITY,
+        lower: 0.0,
+        upper: f64::INFINITY,
+        point_a: Point3::origin(),
+        point_b: Point3::origin(),
+        overlap: false,
+        stats: TraversalStats::default(),
+    })
+}
+
+/// The query proper, for solids that passed [`check_query`].
+fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
+    let pos_ab = a.relative_pose(b);
+    let slack = query_slack(&a.tree, &b.tree, &pos_ab);
+    if let (true, Some(oa), Some(ob)) = (opts.closed_form, &a.tree.offset, &b.tree.offset) {
+        return offset_result(a, &offset_distance(oa, ob, &pos_ab, slack));
+    }
+    // The answer is widened by the rounding slack on both sides: the traversal stops that
+    // much narrower, so that `upper - lower` keeps within the requested width.
+    let topts = TraversalOptions {
+        tolerance: (opts.tolerance.width(a.tree.target_eps, b.tree.target_eps) - 2.0 * slack)
+            .max(0.0),
+        budget: opts.budget,
+        bound: opts.bound,
+    };
+    let mut s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
+    if !s.surfaces_meet
+        && s.lower - slack <= 0.0
+        && topts.tolerance > 0.0
+        && !s.stats.budget_exhausted
+    {
+        // The interval reached 0 only because the tolerance let the traversal stop early:
+        // certifying "no overlap" below would search both solids for a point inside the
+        // other (milliseconds). Narrowing to tolerance 0 first usually lifts the lower
+        // bound above 0 for a fraction of that (issue 11: at eps 1e-2 the default
+        // tolerance was 3-6x slower than tolerance 0).
+        let exact = TraversalOptions {
+            tolerance: 0.0,
+            ..topts
+        };
+        let first = s.stats;
+        s = traverse(&a.tree, &b.tree, &pos_ab, &exact, s.best_pair);
+        s.stats.add(&first);
+    }
+    cache.last_pair = s.best_pair.or(cache.last_pair);
+    let eps_sum = a.tree.eps + b.tree.eps;
+    let world = |p: &Point3<f64>| a.pose * p;
+    let surface_lower = (s.lower - slack).max(0.0);
+    let surface_upper = s.upper + slack;
+
+    let may_meet = s.surfaces_meet || surface_lower <= 0.0;
+    let verdict = if may_meet {
+        // A verified interpenetration (deepest common normal with both ends inside the
+        // other solid) first, then sampled points of either solid inside the other.
+        let pen = s
+            .penetration
+            .filter(|&(_, _, m)| m > eps_sum + slack)
+            .map(|(p, _, _)| p);
+        let witness = Some((s.point_a, s.point_b));
+        match pen
+            .or_else(|| certify_overlap(&a.tree, &b.tree, &pos_ab, s.best_pair, witness, slack))
+        {
+            Some(x) => Verdict::Overlap(x),
+            None => Verdict::Undecided,
+        }
+    } else {
+        nesting(&a.tree, &b.tree, &pos_ab, &s.point_a, &s.point_b, slack)
+    };
+    let lower = match verdict {
+        Verdict::Overlap(x) => return overlap_result(world(&x), world(&x), s.stats),
+        Verdict::Apart => surface_lower,
+        Verdict::Undecided => 0.0,
+    };
+    let mut upper = surface_upper;
+    let (mut pa, mut pb) = (s.point_a, s.point_b);
+    let mut value = s.approx;
+    if opts.refine {
+        if let Some(r) = refine_on_profiles(a, b, &pos_ab, &pa, &pb) {
+            // Two points on the exact boundaries: their distance is an upper bound. A value
+            // below the certified lower bound would contradict it; it is never used to move
+            // the lower bound, and such a refinement is discarded.
+            if r.distance >= lower && r.distance <= upper {
+                upper = r.distance;
+                value = r.distance;
+                pa = r.point_a;
+                pb = r.point_b;
+            }
+        }
+    }
+    Distance {
+        value: value.clamp(lower, upper),
+        lower,
+        upper,
+        point_a: world(&pa),
+        point_b: world(&pb),
+        overlap: false,
+        stats: s.stats,
+    }
+}
+
+/// The closed form for two balls or solid tori ([`crate::query::kernel::ball_torus`]) as a query answer:
+/// overlap only with a point inside both true solids, `lower = 0` in the band around
+/// touching where neither overlap nor separation is certain.
+fn offset_result(a: &Solid, r: &OffsetDistance) -> Distance {
+    let stats = TraversalStats {
+        closed_forms: 1,
+        ..TraversalStats::default()
+    };
+    if let Some(x) = r.inside_both {
+        let x = a.pose * x;
+        return overlap_result(x, x, stats);
+    }
+    Distance {
+        value: r.value.clamp(r.lower, r.upper),
+        lower: r.lower,
+        upper: r.upper,
+        point_a: a.pose * r.point_a,
+        point_b: a.pose * r.point_b,
+        overlap: false,
+        stats,
+    }
+}
+
+fn overlap_result(pa: Point3<f64>, pb: Point3<f64>, stats: TraversalStats) -> Distance {
+    Distance {
+        value: 0.0,
+        lower: 0.0,
+        upper: 0.0,
+        point_a: pa,
+        point_b: pb,
+        overlap: true,
+        stats,
+    }
+}

@@ -1,0 +1,328 @@
+//! Solid semantics of a query (solids, not surfaces: overlapping or nested solids are at distance 0): when the boundary surfaces
+//! may meet, or are apart but one solid may contain the other, decide whether the solids
+//! certainly overlap, certainly do not, or cannot be told apart at the trees' accuracy.
+//!
+//! **Certificates of overlap.** Let `e_a`, `e_b` be the trees' bounds (the true boundary
+//! of each solid is within `e` of its approximating boundary, both ways) and `margin_A(x)`
+//! the distance of `x` to A's approximating chain (revolved), with `x` inside A's
+//! approximating region.
+//! * A point `x` of B's *approximating surface* inside A with `margin_A(x) > e_a + e_b`: the
+//!   ball of radius `e_b` about `x` holds a point `y` of B's true surface, and the whole
+//!   ball is inside A's true region (its distance to A's true boundary exceeds
+//!   `margin - e_a > e_b`). A boundary point of B interior to A: the solids overlap.
+//! * A point `x` *inside B* with clearance `c_B(x) > e_b` from B's approximating chain and
+//!   inside A with `margin_A(x) > e_a`: `x` lies in both true solids.
+//!
+//! **Nesting.** When the surfaces are certainly apart (positive certified lower bound), B's
+//! boundary (a connected surface) lies entirely inside or entirely outside true A, so one
+//! point of B's approximating surface whose classification in A has margin above
+//! `e_a + e_b` decides it for all of B (same argument as above, with the outside case
+//! symmetric).
+//!
+//! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::traverse::distance`]).
+
+use crate::bvh::containment::{point_in_profile, point_in_solid};
+use crate::bvh::patch::{e_rho, lift};
+use crate::bvh::QueryTree;
+use nalgebra::{Isometry3, Point2, Point3};
+use std::f64::consts::TAU;
+
+/// Revolution angles at which sample meridian points are lifted to 3-D. Twelve meridians
+/// resolve any overlap region wider than 30 degrees around the axis; narrower ones are
+/// found by the traversal's penetration pairs (deepest common normals).
+const SAMPLE_THETAS: usize = 12;
+
+/// Interior points probed per axis of the profile's bounding box when looking for points
+/// with clearance (a 12 x 12 grid; the best few are kept).
+const CORE_GRID: usize = 12;
+
+/// Interior points with the largest clearance kept per solid.
+const CORE_POINTS: usize = 4;
+
+/// What the overlap analysis concluded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Verdict {
+    /// The solids certainly overlap; a point (A's frame) inside both.
+    Overlap(Point3<f64>),
+    /// Neither solid can contain the other (only meaningful when the surfaces are apart).
+    Apart,
+    /// The trees' accuracy does not decide it.
+    Undecided,
+}
+
+/// Meridian points of the approximating surface: each patch's ends (the poles of the solid
+/// among them, where coaxial contacts are deepest) and midpoint.
+fn surface_meridian_points(tree: &QueryTree) -> Vec<Point2<f64>> {
+    tree.patches
+        .iter()
+        .flat_map(|p| {
+            [
+                p.arc.point_at(0.0),
+                p.arc.point_at(0.5),
+                p.arc.point_at(1.0),
+            ]
+        })
+        .collect()
+}
+
+/// Parameters at which the patches of the leaf where the surfaces met are sampled.
+const FOCUS_PARAMS: usize = 9;
+
+/// Revolution angles for the focus leaf's samples.
+const FOCUS_THETAS: usize = 48;
+
+/// Interior meridian points with their clearance from the approximating chain, best first.
+fn core_meridian_points(tree: &QueryTree) -> Vec<(Point2<f64>, f64)> {
+    let Some(root) = tree.nodes.get(tree.root as usize) else {
+        return Vec::new();
+    };
+    let (c, r) = (root.bound.center, root.bound.radius);
+    let lo = Point2::new((c.x - r).max(0.0), c.y - r);
+    let hi = Point2::new(c.x + r, c.y + r);
+    let mut found: Vec<(Point2<f64>, f64)> = Vec::new();
+    for i in 0..CORE_GRID {
+        for j in 0..CORE_GRID {
+            let fx = (i as f64 + 0.5) / CORE_GRID as f64;
+            let fy = (j as f64 + 0.5) / CORE_GRID as f64;
+            let m = Point2::new(lo.x + fx * (hi.x - lo.x), lo.y + fy * (hi.y - lo.y));
+            let inside = point_in_profile(tree, m);
+            if inside.inside {
+                found.push((m, inside.margin));
+            }
+        }
+    }
+    found.sort_by(|x, y| y.1.total_cmp(&x.1));
+    found.truncate(CORE_POINTS);
+    found
+}
+
+/// The meridian point `m` lifted at revolution angle `theta` (tree frame).
+fn lift_at(m: Point2<f64>, theta: f64) -> Point3<f64> {
+    lift(m, &e_rho(theta))
+}
+
+fn thetas() -> impl Iterator<Item = f64> {
+    (0..SAMPLE_THETAS).map(|k| k as f64 * TAU / SAMPLE_THETAS as f64)
+}
+
+/// A point of `inner`'s approximating surface or interior (frame of `inner`, mapped to
+/// `outer`'s frame by `pos`) that certifies overlap with `outer` (module doc).
+#[allow(clippy::too_many_arguments)]
+fn overlap_point(
+    outer: &QueryTree,
+    inner: &QueryTree,
+    pos: &Isometry3<f64>,
+    focus: Option<u32>,
+    witness: Option<Point3<f64>>,
+    e_outer: f64,
+    e_inner: f64,
+    slack: f64,
+) -> Option<Point3<f64>> {
+    let threshold = e_outer + e_inner + slack;
+    let deep = |x: Point3<f64>| signed_depth(outer, &x) > threshold;
+    if let Some(leaf) = focus {
+        if let Some(x) = search_leaf(outer, inner, pos, leaf, witness, threshold) {
+            return Some(x);
+        }
+    }
+    for m in surface_meridian_points(inner) {
+        for th in thetas() {
+            let x = pos * lift_at(m, th);
+            if deep(x) {
+                return Some(x);
+            }
+        }
+    }
+    for (m, clearance) in core_meridian_points(inner) {
+        if clearance <= e_inner + slack {
+            continue;
+        }
+        for th in thetas() {
+            let x = pos * lift_at(m, th);
+            let c = point_in_solid(outer, &x);
+            if c.inside && c.margin > e_outer + slack {
+                return Some(x);
+            }
+        }
+    }
+    None
+}
+
+/// Signed depth of `x` (outer's frame) in `outer`: the margin inside, minus it outside.
+fn signed_depth(outer: &QueryTree, x: &Point3<f64>) -> f64 {
+    let c = point_in_solid(outer, x);
+    if c.inside {
+        c.margin
+    } else {
+        -c.margin
+    }
+}
+
+/// Pattern-search iterations of [`search_leaf`]'s ascent.
+const ASCENT_ITERS: usize = 400;
+
+/// Searches the patches of `inner`'s leaf `leaf` (where the traversal found the surfaces
+/// meeting: a penetration, if any, is nearby) for a point deeper in `outer` than
+/// `threshold`: first a dense grid of samples, then a local ascent of the signed depth from
+/// the surface point nearest `witness` (inner's frame) and from the deepest grid sample.
+/// Where the surfaces cross, the cap of one solid inside the other may be narrower than any
+/// fixed sampling, and its deepest point is a local maximum of the depth. Returns the point
+/// in outer's frame: the same certificate as any sample.
+fn search_leaf(
+    outer: &QueryTree,
+    inner: &QueryTree,
+    pos: &Isometry3<f64>,
+    leaf: u32,
+    witness: Option<Point3<f64>>,
+    threshold: f64,
+) -> Option<Point3<f64>> {
+    let n = inner.nodes.get(leaf as usize)?;
+    let patches = &inner.patches[n.patch_start as usize..n.patch_end as usize];
+    let point = |k: usize, s: f64, th: f64| pos * lift_at(patches[k].arc.point_at(s), th);
+    let depth = |k: usize, s: f64, th: f64| signed_depth(outer, &point(k, s, th));
+    // The grid, evaluated once: a deep sample certifies at once, the deepest seeds an ascent.
+    let mut starts: Vec<(usize, f64, f64)> = Vec::new();
+    let mut best_sample = (f64::NEG_INFINITY, 0, 0.0, 0.0);
+    for k in 0..patches.len() {
+        for i in 0..FOCUS_PARAMS {
+            let s = i as f64 / (FOCUS_PARAMS - 1) as f64;
+            for j in 0..FOCUS_THETAS {
+                let th = j as f64 * TAU / FOCUS_THETAS as f64;
+                let d = depth(k, s, th);
+                if d > threshold {
+                    return Some(point(k, s, th));
+                }
+                if d > best_sample.0 {
+                    best_sample = (d, k, s, th);
+                }
+            }
+        }
+    }
+    if let Some(w) = witness {
+        let th = w.y.atan2(w.x);
+        let m = Point2::new(w.x.hypot(w.y), w.z);
+        let mut best = (f64::INFINITY, 0, 0.0);
+        for (k, p) in patches.iter().enumerate() {
+            for i in 0..=32 {
+                let s = i as f64 / 32.0;
+                let d = (p.arc.point_at(s) - m).norm();
+                if d < best.0 {
+                    best = (d, k, s);
+                }
+            }
+        }
+        if best.0.is_finite() {
+            starts.push((best.1, best.2, th));
+        }
+    }
+    if best_sample.0.is_finite() {
+        starts.push((best_sample.1, best_sample.2, best_sample.3));
+    }
+    for (k, mut s, mut th) in starts {
+        let mut d = depth(k, s, th);
+        let (mut hs, mut ht) = (0.125, TAU / FOCUS_THETAS as f64);
+        for _ in 0..ASCENT_ITERS {
+            if d > threshold {
+                return Some(point(k, s, th));
+            }
+            let mut moved = false;
+            for (ds, dt) in [
+                (1.0, 0.0),
+                (-1.0, 0.0),
+                (0.0, 1.0),
+                (0.0, -1.0),
+                (1.0, 1.0),
+                (1.0, -1.0),
+                (-1.0, 1.0),
+                (-1.0, -1.0),
+            ] {
+                let (s2, t2) = ((s + ds * hs).clamp(0.0, 1.0), th + dt * ht);
+                let d2 = depth(k, s2, t2);
+                if d2 > d {
+                    (s, th, d) = (s2, t2, d2);
+                    moved = true;
+                    break;
+                }
+            }
+            if !moved {
+                hs *= 0.5;
+                ht *= 0.5;
+                if hs < 1e-9 {
+                    break;
+                }
+            }
+        }
+        if d > threshold {
+            return Some(point(k, s, th));
+        }
+    }
+    None
+}
+
+/// Certified overlap of A and B (`pos_ab` places B in A's frame); the point is in A's frame.
+/// `focus` is the leaf pair where the traversal found the surfaces meeting (sampled densely
+/// and searched for the deepest point), `witness` the traversal's closest pair there (A's
+/// frame).
+pub fn certify_overlap(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    focus: Option<(u32, u32)>,
+    witness: Option<(Point3<f64>, Point3<f64>)>,
+    slack: f64,
+) -> Option<Point3<f64>> {
+    let (ea, eb) = (ta.eps, tb.eps);
+    let (fa, fb) = (focus.map(|f| f.0), focus.map(|f| f.1));
+    let pos_ba = pos_ab.inverse();
+    let (wa, wb) = (witness.map(|w| w.0), witness.map(|w| pos_ba * w.1));
+    overlap_point(ta, tb, pos_ab, fb, wb, ea, eb, slack)
+        .or_else(|| overlap_point(tb, ta, &pos_ba, fa, wa, eb, ea, slack).map(|x| pos_ab * x))
+}
+
+/// Whether `inner`'s boundary is certainly outside `outer` (surfaces known to be apart):
+/// `Some(true)` outside, `Some(false)` inside, `None` undecided at these margins.
+fn boundary_side(
+    outer: &QueryTree,
+    inner: &QueryTree,
+    pos: &Isometry3<f64>,
+    witness: &Point3<f64>,
+    e_sum: f64,
+) -> Option<bool> {
+    let decide = |x: &Point3<f64>| {
+        let c = point_in_solid(outer, x);
+        (c.margin > e_sum).then_some(!c.inside)
+    };
+    if let Some(side) = decide(witness) {
+        return Some(side);
+    }
+    surface_meridian_points(inner)
+        .into_iter()
+        .flat_map(|m| thetas().map(move |th| lift_at(m, th)))
+        .find_map(|x| decide(&(pos * x)))
+}
+
+/// Solids whose surfaces are certainly apart: nested (overlap), apart, or undecided.
+/// `point_a`, `point_b` are the traversal's witnesses in A's frame.
+pub fn nesting(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    point_a: &Point3<f64>,
+    point_b: &Point3<f64>,
+    slack: f64,
+) -> Verdict {
+    let e_sum = ta.eps + tb.eps + slack;
+    let pos_ba = pos_ab.inverse();
+    let b_outside_a = boundary_side(ta, tb, pos_ab, point_b, e_sum);
+    if b_outside_a == Some(false) {
+        return Verdict::Overlap(*point_b);
+    }
+    let a_outside_b = boundary_side(tb, ta, &pos_ba, &(pos_ba * point_a), e_sum);
+    if a_outside_b == Some(false) {
+        return Verdict::Overlap(*point_a);
+    }
+    match (b_outside_a, a_outside_b) {
+        (Some(true), Some(true)) => Verdict::Apart,
+        _ => Verdict::Undecided,
+    }
+}
