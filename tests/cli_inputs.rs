@@ -337,3 +337,45 @@ fn batch_answers_equal_single_queries_bit_for_bit() {
         }
     }
 }
+
+#[test]
+fn a_wider_interval_than_asked_says_why() {
+    let dir = scratch("width");
+    let f = polyline_file(
+        &dir,
+        "disk",
+        "[[0.0, 0.0], [1e8, 0.0], [1e8, 1.0], [0.0, 1.0]]",
+        4,
+    );
+    let out = revdist(
+        &[
+            "distance",
+            &f,
+            "sphere",
+            "--eps",
+            "2e-4",
+            "--json",
+            "--pose-b",
+            r#"{"translation": [0, 0, 1.5]}"#,
+        ],
+        None,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let width = v["upper"].as_f64().unwrap() - v["lower"].as_f64().unwrap();
+    assert!(width > 4e-4, "{v}");
+    assert_eq!(v["width_limit"], "rounding", "{v}");
+    let out = revdist(
+        &[
+            "distance",
+            "pawn",
+            "cup",
+            "--json",
+            "--pose-b",
+            r#"{"translation": [1.4, 0, 0.1]}"#,
+        ],
+        None,
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["width_limit"], "met", "{v}");
+}

@@ -47,7 +47,11 @@ fn check_scene(text: &[u8]) -> Result<bool, String> {
             if scene.eps.is_finite() && scene.eps > 0.0 && scene.frames() < 20_000_000 {
                 Ok(true)
             } else {
-                Err(format!("accepted eps {} with {} frames", scene.eps, scene.frames()))
+                Err(format!(
+                    "accepted eps {} with {} frames",
+                    scene.eps,
+                    scene.frames()
+                ))
             }
         }
     }
@@ -66,7 +70,10 @@ fn mutated_scene_files_are_refused_clearly_or_accepted_sane() {
         .map(|p| std::fs::read_to_string(p).unwrap())
         .collect();
     seeds.sort();
-    assert!(seeds.len() >= 4, "the example scenes are the fuzzer's seeds");
+    assert!(
+        seeds.len() >= 4,
+        "the example scenes are the fuzzer's seeds"
+    );
     let mut rng = Rng(seed ^ 0x5CE4E);
     let inputs: Vec<Vec<u8>> = (0..SCENE_INPUTS)
         .map(|i| {
@@ -110,5 +117,8 @@ fn mutated_scene_files_are_refused_clearly_or_accepted_sane() {
         "{SCENE_INPUTS} mutated scenes ({accepted} accepted) in {:.1} s",
         started.elapsed().as_secs_f64()
     );
-    assert!(accepted >= SCENE_INPUTS / 50, "mutations must also reach valid scenes");
+    assert!(
+        accepted >= SCENE_INPUTS / 50,
+        "mutations must also reach valid scenes"
+    );
 }

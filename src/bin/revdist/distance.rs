@@ -10,6 +10,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use revdist::limits::check_translation;
+use revdist::query::traverse::width_limit;
 use revdist::query::{try_distance, Budget, Distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use serde::{Deserialize, Serialize};
@@ -109,6 +110,9 @@ pub(crate) struct Output {
     budget_exhausted: bool,
     /// Answered by the closed form for two balls or solid tori (no traversal).
     closed_form: bool,
+    /// What limited `upper - lower`: `met` (the requested width), `budget`, `rounding`
+    /// (the slack at this configuration's scale) or `leaves` (the trees' own accuracy).
+    width_limit: &'static str,
     /// Wall time of the query in microseconds (`--timings`).
     #[serde(skip_serializing_if = "Option::is_none")]
     time_us: Option<f64>,
@@ -130,6 +134,7 @@ impl From<&Distance> for Output {
             subdivided_pairs: d.stats.subdivided_pairs,
             budget_exhausted: d.stats.budget_exhausted,
             closed_form: d.stats.closed_forms > 0,
+            width_limit: "met",
             time_us: None,
         }
     }
@@ -251,8 +256,10 @@ pub fn run(args: Args) -> CmdResult {
     let started = std::time::Instant::now();
     let d = try_distance(&sa, &sb, &opts).map_err(|e| e.to_string())?;
     let time_us = started.elapsed().as_secs_f64() * 1e6;
+    let limit = width_limit(&sa, &sb, &opts, &d).name();
     if args.json {
         let mut out = Output::from(&d);
+        out.width_limit = limit;
         out.time_us = args.timings.then_some(time_us);
         println!("{}", serde_json::to_string(&out)?);
     } else {
@@ -267,6 +274,9 @@ pub fn run(args: Args) -> CmdResult {
             d.point_b.x, d.point_b.y, d.point_b.z
         );
         println!("overlap   {}", d.overlap);
+        if limit != "met" {
+            println!("width     wider than asked: limited by {limit}");
+        }
         if args.timings {
             println!("time      {time_us:.1} us");
         }
@@ -329,6 +339,7 @@ pub(crate) fn answer_line(
     let time_us = started.elapsed().as_secs_f64() * 1e6;
     let mut out = Output::from(&d);
     out.line = Some(number);
+    out.width_limit = width_limit(&a, &b, &opts, &d).name();
     out.time_us = settings.timings.then_some(time_us);
     serde_json::to_string(&out).map_err(|e| e.to_string())
 }

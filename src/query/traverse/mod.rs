@@ -16,9 +16,11 @@ pub mod distance;
 pub mod overlap;
 pub mod refine;
 pub mod search;
+pub mod width;
 
 pub use distance::{
     distance, distance_cached, try_distance, try_distance_cached, Distance, QueryCache, QueryError,
     QueryOptions, Tolerance,
 };
 pub use search::{traverse, Budget, SurfaceBounds, TraversalOptions, TraversalStats};
+pub use width::{width_limit, WidthLimit};
