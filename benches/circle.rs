@@ -1,6 +1,6 @@
 //! Criterion benchmarks of circle/circle minimum distance and all-binormals, for random
-//! general pairs and each degenerate family (issue 3 target: median <= 1 us for a general
-//! pair's minimum distance).
+//! general pairs and each degenerate family (target: median <= 1 us for a general pair's
+//! minimum distance; `docs/cost_model.md`).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};

@@ -176,7 +176,8 @@ fn patch_kernels(c: &mut Criterion) {
             })
         });
     }
-    // Stage 1 of a leaf pair (issue 11): the cheap lower bound and realised upper bound.
+    // Stage 1 of a leaf pair (`docs/cost_model.md`): the cheap lower bound and realised upper
+    // bound.
     group.bench_function("stage1_bounds", |bench| {
         bench.iter(|| {
             let mut memo = revdist::query::leaf::patch_lower::CoreMemo::default();

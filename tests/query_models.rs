@@ -1,5 +1,6 @@
 //! Every pair of built-in models under random poses (separated, nearly touching with gaps
-//! 1e-9..1e-2, overlapping or nested) and the hard cases of issue 5, against the
+//! 1e-9..1e-2, overlapping or nested) and hard poses (a thin ring in the bottle's neck, crossing
+//! axes, a sphere on another solid's axis, parallel flat faces), against the
 //! independent dense-sampling reference (`tests/reference`).
 
 mod reference;

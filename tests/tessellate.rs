@@ -1,4 +1,4 @@
-//! Certified tessellation (issue 12): watertight, outward, and within its certified Hausdorff
+//! Certified tessellation: watertight, outward, and within its certified Hausdorff
 //! bound of the true surface, measured against an independent evaluation of the surface (the
 //! NURBS profile evaluated densely, not the biarc tree).
 //!

@@ -1,5 +1,5 @@
 //! Builds the C++ baselines of `verify` (FCL 0.7, libccd 2.1, CGAL 5.5; see
-//! `shared/notes/baselines.md` and `src/baselines/mod.rs`).
+//! `docs/verification.md`, "Building the baselines", and `src/baselines/mod.rs`).
 //!
 //! Layout: the shims are in `cpp/` at the workspace root, one per library
 //! (`cpp/include/{fcl,ccd,cgal}_shim.h`, `cpp/src/{fcl,ccd,cgal}_shim.cc`, shared input checks in

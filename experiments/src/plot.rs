@@ -1,6 +1,6 @@
 //! The figures' common style and the chart kinds plotters lacks (grouped bars with a legend
 //! outside the plot). SVG only: text is written as `<text>` and needs no font files (see
-//! `../shared/notes/style_ecosystem.md` section 4).
+//! `docs/protocols.md`, "Figures").
 
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

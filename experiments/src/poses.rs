@@ -185,7 +185,7 @@ pub fn log_uniform(rng: &mut SplitMix, lo: f64, hi: f64) -> f64 {
     (lo.ln() + (hi.ln() - lo.ln()) * rng.next_f64()).exp()
 }
 
-/// Gap range of the close poses (log-uniform), as in issue 11.
+/// Gap range of the close poses (log-uniform; `docs/protocols.md`).
 pub const CLOSE_GAPS: (f64, f64) = (1e-3, 1e-1);
 
 /// Eps of the trees that place the close poses: far below the smallest gap, so the placed gaps

@@ -21,8 +21,8 @@ pub fn paper_pairs() -> Vec<(&'static str, &'static str)> {
     v
 }
 
-/// A profile by name: `torus` (R 1, r 0.25 as one exact circle, the torus of issue 11) or any
-/// name `revdist::models::model` accepts (built-ins and `morph@T`).
+/// A profile by name: `torus` (R 1, r 0.25 as one exact circle, the torus pair of
+/// `fcl_bench`) or any name `revdist::models::model` accepts (built-ins and `morph@T`).
 pub fn profile(name: &str) -> Result<Profile, Box<dyn std::error::Error>> {
     if name == "torus" {
         use revdist::models::primitives::{arc, deg};

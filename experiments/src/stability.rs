@@ -1,4 +1,4 @@
-//! Numerical stability near degenerate configurations (issue 13, item 7): the error of
+//! Numerical stability near degenerate configurations: the error of
 //! revdist's answers against exact references as a configuration is moved a distance
 //! `delta = 10^-k` (k = 16..1) away from a degenerate one, and at the degenerate
 //! configuration itself (`delta = 0`).

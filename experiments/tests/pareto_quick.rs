@@ -1,4 +1,4 @@
-//! A tiny slice of the `pareto` driver (issue 13, item 6): it writes every output, revdist's
+//! A tiny slice of the `pareto` driver: it writes every output, revdist's
 //! certified width at its default tolerance is at most eps_a + eps_b, the width does not grow
 //! as eps shrinks, and no revdist answer contradicts an FCL answer. The checks are plain
 //! functions, and `checks_reject_bad_rows` shows that each one fails on rows that break it.

@@ -1,4 +1,4 @@
-//! A slice of the stability study (`experiments::stability`, issue 13 item 7): every family,
+//! A slice of the stability study (`experiments::stability`): every family,
 //! delta = 0 and six sizes 1e-16..1e-1, checked against the same bounds as the full run.
 //!
 //! * Circle level (4 seeds per family and delta): `|d - d_exact| <= 64 u size` (u = 2^-53): the rounding of the inputs

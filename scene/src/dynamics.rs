@@ -1,4 +1,4 @@
-//! Rigid-body dynamics for the `dynamic` effect (issue 14, item 3): gravity, contacts from
+//! Rigid-body dynamics for the `dynamic` effect: gravity, contacts from
 //! certified distance queries, and a step that provably never lets two solids overlap.
 //!
 //! # Why not rapier3d

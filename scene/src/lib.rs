@@ -1,4 +1,4 @@
-//! Scenes for revdist (issue 14): bodies, their poses and the effects they take part in
+//! Scenes for revdist: bodies, their poses and the effects they take part in
 //! (static, kinematic, deforming, dynamic) are declared in a TOML file ([`mod@format`]); the
 //! runner ([`runner`]) builds a plan and computes only what the scene asks for, with counters
 //! that show it; [`output`] writes the per-frame CSV and the summary. Dynamic bodies are

@@ -1,4 +1,4 @@
-//! Rendered frames (issue 14, item 4): a small software z-buffer rasteriser of the bodies'
+//! Rendered frames: a small software z-buffer rasteriser of the bodies'
 //! certified tessellations ([`revdist::tessellate`]) with a perspective camera and Lambert
 //! shading, written as PNG. Meant for a person to look at a scene, not for measurements.
 

@@ -1,4 +1,4 @@
-//! The scene runner (issue 14, item 2): builds a plan from a [`Scene`] and computes only what
+//! The scene runner: builds a plan from a [`Scene`] and computes only what
 //! it asks for.
 //!
 //! * Trees are built once per body; only deforming bodies rebuild, once per frame.

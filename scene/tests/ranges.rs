@@ -33,8 +33,9 @@ fn keyed(x0: f64, x1: f64, interpolation: &str) -> String {
     )
 }
 
-/// The reproducers: a pose at 1e200 and a random-motion amplitude of 1e300 ran and
-/// reported lower 0, value inf and witnesses at the origin; now each is refused up front.
+/// Reproducers of inputs that once ran out of range: a pose at 1e200 and a random-motion
+/// amplitude of 1e300 ran and reported lower 0, value inf and witnesses at the origin; now
+/// each is refused up front.
 #[test]
 fn out_of_range_poses_and_amplitudes_name_the_field() {
     let origin = sphere("a", "{ translation = [0.0, 0.0, 0.0] }");

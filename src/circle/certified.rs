@@ -55,7 +55,8 @@ const Q_NOISE_FACTOR: f64 = 64.0 * f64::EPSILON;
 const AXIS_CLEARANCE: f64 = 1e-6;
 
 /// Largest decrease of f (unit scale) still available by descending from the returned
-/// angle: 1e-14, a hundredth of the 1e-12 accuracy.
+/// angle: 1e-14, a hundredth of the solver's promised 1e-12 accuracy
+/// ([`crate::circle::TIE_REL_TOL`]).
 const MIN_GAIN: f64 = 1e-14;
 
 /// A certified minimum in local units.

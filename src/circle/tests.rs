@@ -942,7 +942,8 @@ fn eight_binormal_cases() -> [EightCase; 2] {
     ]
 }
 
-/// Pinned binormal lengths: the distance accuracy (the f64 rounding of the rational
+/// Pinned binormal lengths: the solver's promised accuracy, 1e-12 of the configuration's
+/// scale (`verify circles`, `docs/verification.md`; the f64 rounding of the rational
 /// axes moves them by ~1e-16).
 const PIN_LENGTH_TOL: f64 = 1e-12;
 /// Pinned angles: simple roots at least 0.1 apart are located to ~1e-15 rad; 1e-10 leaves

@@ -73,8 +73,8 @@
 //! inequality gives the bound in both directions. ∎
 //!
 //! The bound is a sum because the errors do add up in the worst place: at a mesh vertex on the
-//! outer equator of a torus the meridian offset and the ring offset both point outwards (hence
-//! the measured 1.6-2 eps when both directions were given a sagitta of eps each).
+//! outer equator of a torus the meridian offset and the ring offset both point outwards (an
+//! earlier construction that gave both directions a sagitta of eps each measured 1.6-2 eps).
 //!
 //! # Solid semantics
 //!

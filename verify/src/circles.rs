@@ -12,7 +12,7 @@ use revdist::circle::{binormals, min_distance, Circle3, Multiplicity};
 use rug::Rational;
 
 /// Pass threshold: |d_float - d_exact| <= REL_TOL * scale, scale = max(ra, rb, |Cb - Ca|)
-/// (issue 3's accuracy requirement).
+/// (the accuracy the solver promises; `docs/verification.md`, section 3).
 pub const REL_TOL: f64 = 1e-12;
 
 /// Binormal counts are compared only when the circles are at least this far apart

@@ -33,7 +33,7 @@ enum Command {
         #[arg(long, default_value_t = 0.05)]
         min_gap: f64,
     },
-    /// Certified distance queries against the independent oracle (issue 10): built-in
+    /// Certified distance queries against the independent oracle: built-in
     /// models, M_t frames and random freeform profiles under far, separated, near-touching,
     /// touching, overlapping, nested and coincident poses.
     Queries {
@@ -68,7 +68,7 @@ enum Command {
     /// frames, and against CGAL / libccd on convex pairs; writes crosscheck.md, .csv and
     /// failures.jsonl (verify/src/crosscheck/mod.rs states the agreement criterion).
     Crosscheck {
-        /// Poses per mesh pair and eps (the issue's full scale is 1000).
+        /// Poses per mesh pair and eps (1000 gives the committed `figures/crosscheck-1000/`).
         #[arg(long, default_value_t = verify::crosscheck::options::DEFAULT_POSES)]
         poses: usize,
         /// Poses per convex pair and eps (0: no convex checks).

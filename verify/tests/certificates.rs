@@ -1,7 +1,8 @@
-//! Regression tests of the certificates issue (issue 10), each checked against the
+//! Regression tests of the query's certificates, each checked against the
 //! independent oracle (`verify::oracle`, which shares no code with the query):
-//! * every row of the issue's table (the deforming model M_t against a sphere and a pawn)
-//!   and its two profiles (an exactly straight span; a valid profile that failed to build);
+//! * every row of the table of cases that failed before the certificates were made rigorous
+//!   (the deforming model M_t against a sphere and a pawn) and two profiles (an exactly
+//!   straight span; a valid profile that failed to build);
 //! * the anytime, warm-start and refine paths, whose answers must pass the same checks, with
 //!   warm and cold intervals agreeing;
 //! * overlap reported `true` where the solids certainly overlap.
@@ -103,9 +104,9 @@ fn verdict_on(sa: &Solid, sb: &Solid, d: Distance, label: &str, which: &[Check])
     Checked { d, oracle: o }
 }
 
-/// The issue's table: M_t frames against the sphere model (radius 0.75) placed
+/// Cases that once failed: M_t frames against the sphere model (radius 0.75) placed
 /// three units away. Truth: the planar distance from the sphere centre to the profile minus
-/// 0.75 (the issue's numbers, to their 4 printed digits); each interval must hold it, with
+/// 0.75 (reference values to 4 printed digits); each interval must hold it, with
 /// witnesses on the solids (oracle checks) and no overlap.
 #[test]
 fn deforming_model_against_sphere() {
@@ -161,8 +162,8 @@ fn deforming_model_against_pawn() {
 }
 
 /// A profile with an exactly straight span (four collinear control points), against the
-/// sphere at the issue's pose: truth 0.19623, once reported as 0 with a witness below the
-/// solid.
+/// sphere at a pose that once failed: truth 0.19623, once reported as 0 with a witness below
+/// the solid.
 #[test]
 fn straight_span_profile() {
     let a = from_toml_str(STRAIGHT_SPAN).unwrap();

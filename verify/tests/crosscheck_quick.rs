@@ -1,4 +1,4 @@
-//! Quick slice of `verify crosscheck` (issue 12): revdist against FCL meshes on every mesh
+//! Quick slice of `verify crosscheck`: revdist against FCL meshes on every mesh
 //! pair, and against CGAL and libccd on the convex pairs, with a few poses of each kind;
 //! asserts zero failures (see verify/src/crosscheck/mod.rs for the criterion).
 

@@ -1,5 +1,5 @@
-//! A deterministic slice of the `verify queries` campaign (issue 10): built-in models, M_t
-//! frames and random freeform profiles under every pose kind, plus the fixed regression
+//! A deterministic slice of the `verify queries` campaign (`docs/verification.md`): built-in
+//! models, M_t frames and random freeform profiles under every pose kind, plus the fixed regression
 //! cases, each query checked against the independent oracle. Run in release mode:
 //! `cargo test --release -p verify --test queries_quick` (about 20-40 s on 2 cores).
 //! Reproducers of failures go to `target/tmp/verify-queries-quick/`.

@@ -1,4 +1,4 @@
-//! Where a certified query spends its time (issue 11's cost model, per pair of the paper's
+//! Where a certified query spends its time (`docs/cost_model.md`, per pair of the paper's
 //! models): `query_times.csv` / `.md` / `.svg`, per pair of the five paper models and per
 //! eps, the median time of a certified distance query over seeded random poses near contact,
 //! with the node pairs, leaf bounds, exact leaf solves, the share of time in each stage, and

@@ -1,4 +1,4 @@
-//! revdist against FCL 0.7 at equal accuracy (issues 11 and 12): in one run and on the same
+//! revdist against FCL 0.7 at equal accuracy (`docs/protocols.md`): in one run and on the same
 //! seeded poses near contact (gaps log-uniform in [1e-3, 1e-1]), per model pair and eps,
 //!
 //! * the median and p90 query time of revdist at its default tolerance (`Tolerance::Trees`:
@@ -49,7 +49,8 @@ use std::fmt::Write as _;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-/// The issue-11 table.
+/// The pairs of the speed table: two solid tori (closed form) and four pairs of the paper's
+/// models.
 const DEFAULT_PAIRS: &str = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill";
 /// Poses per pair at eps 1e-3 and 1e-4 (default run).
 const DEFAULT_POSES: usize = 200;
@@ -58,7 +59,7 @@ const DEFAULT_POSES: usize = 200;
 const DEFAULT_POSES_FINE: usize = 100;
 /// Poses per pair with `--paper` (alias `--full`).
 const FULL_POSES: usize = 1000;
-/// Gap range of the poses (log-uniform), as in issue 11.
+/// Gap range of the poses (log-uniform), shared with `query_cost` and `pareto`.
 const GAPS: (f64, f64) = CLOSE_GAPS;
 /// Capped layout: longest meridian edge as a fraction of the profile's bounding-box diagonal.
 const EDGE_CAP_REL: f64 = 1.0 / 64.0;

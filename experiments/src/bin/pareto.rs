@@ -1,4 +1,4 @@
-//! What accuracy costs (issue 13, item 6): query time, build time and memory against the
+//! What accuracy costs: query time, build time and memory against the
 //! accuracy achieved, for revdist and FCL 0.7, on the same seeded poses near contact in one run.
 //!
 //! * revdist at eps 1e-2 .. 1e-8 with its default tolerance (the query stops once the
@@ -52,7 +52,7 @@ use std::time::Instant;
 use verify::baselines::fcl::FclMesh;
 
 /// Representative pairs: two paper pairs (one where revdist is slower than FCL at coarse eps,
-/// one where the two are close) and the torus of issue 11.
+/// one where the two are close) and the torus pair of `fcl_bench`.
 const DEFAULT_PAIRS: &str = "pawn-cup,table-lightmill,torus-torus";
 /// revdist's eps (default tolerance and tolerance 0).
 const REV_EPS: [f64; 7] = [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8];

@@ -1,5 +1,5 @@
-//! Where a distance query spends its time (issue 11): per model pair and eps, over seeded
-//! poses near contact (gaps log-uniform in [1e-3, 1e-1]), the median query time, the
+//! Where a distance query spends its time (`docs/cost_model.md`): per model pair and eps,
+//! over seeded poses near contact (gaps log-uniform in [1e-3, 1e-1]), the median query time, the
 //! traversal counters, and the mean time per query in stage-1 leaf bounds (incl. stage 1b)
 //! and in exact leaf solves (the rest is node bounds, the queue and solid semantics).
 //!
@@ -13,7 +13,8 @@
 //! the best leaf pair of an untimed query on the same pose (all of them run before the
 //! timed loop), i.e. a search that knows where the minimum is before it starts. What such a
 //! query still spends is the proof: the node pairs above that leaf pair whose keys are below
-//! the distance, and the leaf pairs near it (the floor of the search order, issue 11).
+//! the distance, and the leaf pairs near it (the floor of the search order,
+//! `docs/cost_model.md`).
 
 use clap::Parser;
 use experiments::args::{positive_count, ModelPair};
@@ -31,7 +32,8 @@ use std::time::Instant;
 
 /// Bytes written between queries under `--cold`: above this machine's last-level cache.
 const EVICT_BYTES: usize = 64 << 20;
-/// Defaults: the issue-11 pairs, eps and pose count, and the seed (xor the pair's length).
+/// Defaults: the pairs, eps and pose count of `fcl_bench`, and the seed (xor the pair's
+/// length).
 const DEFAULT_PAIRS: &str = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill";
 const DEFAULT_EPS: [f64; 3] = [1e-3, 1e-4, 1e-5];
 const DEFAULT_POSES: usize = 300;

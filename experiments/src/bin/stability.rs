@@ -1,4 +1,4 @@
-//! Numerical stability near degenerate configurations (issue 13, item 7): error against the
+//! Numerical stability near degenerate configurations: error against the
 //! perturbation size `delta = 1e-16 .. 1e-1` away from each degenerate family, at the circle
 //! level (double-precision circle/circle distance against exact rational arithmetic) and at
 //! the solid level (certified queries against closed forms evaluated in MPFR). The cases,

@@ -1,4 +1,4 @@
-//! The TOML scene format (issue 14): bodies, their poses and effects, what to measure.
+//! The TOML scene format: bodies, their poses and effects, what to measure.
 //!
 //! ```toml
 //! duration = 2.0          # seconds of scene time

@@ -1,4 +1,4 @@
-//! Independent queries on all cores (issue 11): a batch of solid pairs measured in
+//! Independent queries on all cores: a batch of solid pairs measured in
 //! parallel with rayon, results in input order. Each query is the same as [`distance`]
 //! alone (no state is shared between queries); the number of threads follows rayon's
 //! global pool (`RAYON_NUM_THREADS`).

@@ -1,5 +1,5 @@
 //! Cross-check of revdist against FCL on certified meshes, and against CGAL and libccd on
-//! convex pairs (issue 12, item 4).
+//! convex pairs (`docs/verification.md`, section 4).
 //!
 //! # What is compared
 //!

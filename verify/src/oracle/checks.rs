@@ -6,7 +6,7 @@
 //! and `overlap` exactly when the solids intersect or nest (distance 0). The oracle gives a
 //! realised upper estimate `U` (two actual surface points, so `U >= truth`), a lower estimate
 //! `L <= truth`, and a census of boundary samples inside the other solid. The checks
-//! (letters as in issue 10):
+//! (letters as in `docs/verification.md`, section 1, and in the campaign's reports):
 //!
 //! - **a** `lower <= U_solid + slack` (a lower bound above a realised pair is a lie);
 //! - **b** `upper >= L_solid - slack`;
@@ -76,7 +76,7 @@ impl Check {
         Check::PositiveLower,
     ];
 
-    /// Short name with the issue's letter.
+    /// Short name with the check's letter.
     pub fn name(self) -> &'static str {
         match self {
             Check::Lower => "a:lower<=truth",

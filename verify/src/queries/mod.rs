@@ -5,9 +5,9 @@
 //! ([`crate::random_profiles`]) under poses of every kind: far (translation ~1e3 and ~1e6),
 //! separated, near-touching (gaps 1e-2..1e-7), touching (gap 0), overlapping, nested (a small
 //! solid inside a large one, deep or near the wall), coincident (same solid, same pose), with
-//! tree eps in 1e-3..1e-6, some with a tolerance or refined witnesses. The known failing cases
-//! of issue 10 and the failures found against earlier cores (frozen with their profiles in
-//! `verify/regressions/`) come first.
+//! tree eps in 1e-3..1e-6, some with a tolerance or refined witnesses. Cases that failed
+//! before the certificates were made rigorous and the failures found against earlier cores
+//! (frozen with their profiles in `verify/regressions/`) come first.
 //!
 //! * `pool.rs`: the shapes cases draw from;
 //! * `cases.rs`: what a case is and how one is drawn from the seed;

@@ -101,8 +101,8 @@ fn primitive_profiles() -> Vec<(String, Profile)> {
     ]
 }
 
-/// The straight-span profile (a cubic with three collinear control points on
-/// rho = 0.57).
+/// A profile with an exactly straight span (a cubic with three collinear control points on
+/// rho = 0.57), once answered 0 with a witness below the solid.
 pub fn straight_span_profile() -> Profile {
     let pts = [
         [0.0, 0.0],

@@ -1,4 +1,5 @@
-//! The fixed regression cases: the failing cases of issue 10 and the failures the campaign
+//! The fixed regression cases: the cases that failed before the certificates were made
+//! rigorous (M_t against a sphere, an exactly straight span) and the failures the campaign
 //! found against earlier cores, read from `verify/regressions/campaign-cases.txt` with the
 //! random profiles frozen beside it (`<name>.toml`). `cases.jsonl` there replays the same
 //! cases with `revdist distance --batch` (a test keeps it in step).
