@@ -63,6 +63,18 @@ enum Command {
         /// Draw every solid from the balls and solid tori (closed-form queries).
         #[arg(long)]
         primitives: bool,
+        /// Run one shard I/N of the campaign (cases whose index is I modulo N; the same
+        /// --seed and --count in every shard); merge the shards' --out directories with
+        /// `verify merge-queries`.
+        #[arg(long, value_parser = parse_shard)]
+        shard: Option<(usize, usize)>,
+    },
+    /// Adds up the shards of one `verify queries` campaign (their --out directories, each
+    /// with a summary.json); exit status 1 when any case failed.
+    MergeQueries {
+        /// The shards' output directories.
+        #[arg(required = true)]
+        dirs: Vec<std::path::PathBuf>,
     },
     /// revdist against FCL meshes (certified tessellations) on the paper models and M_t
     /// frames, and against CGAL / libccd on convex pairs; writes crosscheck.md, .csv and
@@ -136,6 +148,7 @@ fn main() {
             show,
             no_regressions,
             primitives,
+            shard,
         } => {
             if eps.is_empty() || eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
                 eprintln!("error: --eps needs positive numbers, got {eps:?}");
@@ -151,9 +164,13 @@ fn main() {
                 regressions: !no_regressions,
                 print_failures: show,
                 primitives,
+                shard,
             };
             let s = verify::queries::run(&opts);
-            if let Err(e) = s.write_reproducers() {
+            if let Err(e) = s
+                .write_reproducers()
+                .and_then(|()| s.write_summary(seed, count, shard))
+            {
                 eprintln!("error: writing reproducers to {}: {e}", opts.out.display());
             }
             print!("{}", s.report(show));
@@ -161,6 +178,18 @@ fn main() {
                 std::process::exit(1);
             }
         }
+        Command::MergeQueries { dirs } => match verify::queries::merge::merge(&dirs) {
+            Ok((report, failed)) => {
+                print!("{report}");
+                if failed {
+                    std::process::exit(1);
+                }
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                std::process::exit(2);
+            }
+        },
         Command::Crosscheck {
             poses,
             convex_poses,
@@ -348,4 +377,21 @@ fn oracle_command(
         );
     }
     Ok(())
+}
+
+/// `I/N` with `I < N`, for `--shard`.
+fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let (i, n) = text
+        .split_once('/')
+        .ok_or_else(|| format!("'{text}' is not of the form I/N (e.g. 0/4)"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<usize>()
+            .map_err(|_| format!("'{text}': '{v}' is not a whole number"))
+    };
+    let (i, n) = (parse(i)?, parse(n)?);
+    if n == 0 || i >= n {
+        return Err(format!("'{text}': need 0 <= I < N"));
+    }
+    Ok((i, n))
 }

@@ -18,6 +18,7 @@ fn quick_slice_has_no_violations() {
         regressions: true,
         print_failures: 20,
         primitives: false,
+        shard: None,
     };
     let s = run(&opts);
     if let Err(e) = s.write_reproducers() {
@@ -41,8 +42,57 @@ fn primitive_slice_has_no_violations() {
         regressions: false,
         print_failures: 20,
         primitives: true,
+        shard: None,
     };
     let s = run(&opts);
     let report = s.report(opts.print_failures);
     assert_eq!(s.violation_count(), 0, "\n{report}");
+}
+
+/// Three shards of a small campaign, merged, cover the same cases as one run: every case
+/// once, the same counts.
+#[test]
+fn shards_merge_to_the_whole_campaign() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("verify-queries-shards");
+    let opts = |shard: Option<(usize, usize)>, name: &str| CampaignOptions {
+        count: 30,
+        seed: 13,
+        eps: vec![1e-3],
+        out: dir.join(name),
+        threads: 0,
+        random_profiles: 10,
+        regressions: true,
+        print_failures: 0,
+        primitives: false,
+        shard,
+    };
+    let whole = run(&opts(None, "whole"));
+    let mut dirs = Vec::new();
+    let mut ids = Vec::new();
+    for i in 0..3 {
+        let o = opts(Some((i, 3)), &format!("shard{i}"));
+        let s = run(&o);
+        s.write_summary(13, 30, Some((i, 3))).unwrap();
+        ids.extend(s.results.iter().map(|r| (r.case.kind, r.case.id)));
+        dirs.push(o.out);
+    }
+    let mut all: Vec<_> = whole
+        .results
+        .iter()
+        .map(|r| (r.case.kind, r.case.id))
+        .collect();
+    all.sort();
+    ids.sort();
+    assert_eq!(ids, all, "every case in exactly one shard");
+    let (report, failed) = verify::queries::merge::merge(&dirs).unwrap();
+    assert!(
+        report.contains(&format!("{} cases, 0 failing", whole.results.len())),
+        "{report}"
+    );
+    assert!(!failed);
+    // A missing or repeated shard is an error that names it.
+    let e = verify::queries::merge::merge(&dirs[..2]).unwrap_err();
+    assert!(e.contains("[2]"), "{e}");
+    let e = verify::queries::merge::merge(&[&dirs[0], &dirs[0]]).unwrap_err();
+    assert!(e.contains("twice"), "{e}");
 }

@@ -19,6 +19,7 @@
 
 mod cases;
 mod checked_query;
+pub mod merge;
 mod placement;
 mod pool;
 mod regressions;

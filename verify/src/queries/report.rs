@@ -141,6 +141,46 @@ impl Summary {
         std::fs::write(self.out.join("failures.jsonl"), lines)
     }
 
+    /// Writes `summary.json` to the output directory: the counts a merge of shards adds up
+    /// ([`super::merge`]), with the settings that must agree between shards and one batch
+    /// line per failing case.
+    pub fn write_summary(
+        &self,
+        seed: u64,
+        count: usize,
+        shard: Option<(usize, usize)>,
+    ) -> std::io::Result<()> {
+        std::fs::create_dir_all(&self.out)?;
+        let by_check: serde_json::Map<String, serde_json::Value> = Check::ALL
+            .iter()
+            .map(|&ch| {
+                let n = self
+                    .results
+                    .iter()
+                    .flat_map(|r| &r.violations)
+                    .filter(|v| v.check == ch)
+                    .count();
+                (ch.name().to_string(), n.into())
+            })
+            .collect();
+        let (index, of) = shard.unwrap_or((0, 1));
+        let summary = serde_json::json!({
+            "seed": seed,
+            "count": count,
+            "shard": [index, of],
+            "cases": self.results.len(),
+            "failing": self.failures().count(),
+            "violations": self.violation_count(),
+            "by_check": by_check,
+            "failures": self.failures().map(|r| self.batch_line(&r.case)).collect::<Vec<_>>(),
+            "wall_s": self.wall.as_secs_f64(),
+        });
+        std::fs::write(
+            self.out.join("summary.json"),
+            serde_json::to_string_pretty(&summary)? + "\n",
+        )
+    }
+
     /// Human-readable report.
     pub fn report(&self, print_failures: usize) -> String {
         let mut s = String::new();

@@ -37,6 +37,10 @@ pub struct CampaignOptions {
     /// Draw every solid from the balls and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`,
     /// `sphere`), whose queries take the closed form of `revdist::query::offset`.
     pub primitives: bool,
+    /// Run only the cases of one shard: `(i, n)` keeps the cases whose index is `i` modulo
+    /// `n` (the fixed cases first, then the drawn ones, as numbered without sharding), so
+    /// that `n` runs with the same seed and count cover the campaign exactly once.
+    pub shard: Option<(usize, usize)>,
 }
 
 impl Default for CampaignOptions {
@@ -49,6 +53,7 @@ impl Default for CampaignOptions {
             threads: 0,
             random_profiles: 0,
             regressions: true,
+            shard: None,
             print_failures: 25,
             primitives: false,
         }
@@ -131,16 +136,20 @@ fn run_inner(opts: &CampaignOptions) -> Summary {
     } else {
         std::thread::available_parallelism().map_or(2, |n| n.get())
     };
+    let mine: Vec<usize> = match opts.shard {
+        Some((i, n)) => (0..ids.len()).filter(|k| k % n == i).collect(),
+        None => (0..ids.len()).collect(),
+    };
     let trees = TreeCache::default();
     let next = std::sync::atomic::AtomicUsize::new(0);
     let results = Mutex::new(Vec::with_capacity(ids.len()));
     std::thread::scope(|scope| {
         for _ in 0..threads {
             scope.spawn(|| loop {
-                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                if i >= ids.len() {
+                let j = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&i) = mine.get(j) else {
                     break;
-                }
+                };
                 let t0 = Instant::now();
                 let case = match &ids[i] {
                     Some(c) => c.clone(),
