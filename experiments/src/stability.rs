@@ -52,10 +52,10 @@ use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use rug::{Float, Rational};
 use verify::circles::{catalogue, random_motion, run_case, Case, CatalogueEntry, RCircle};
-use verify::random_profiles::SplitMix64;
 use verify::exact_circle::{
     rotation_from_quaternion, rotation_from_rational_quaternion, RVec, PREC,
 };
+use verify::random_profiles::SplitMix64;
 
 use crate::SplitMix;
 
@@ -310,7 +310,11 @@ pub fn circle_sample(fi: usize, delta: Option<i32>, seed: usize) -> Result<Sampl
             let [nx, ny, nz] = n;
             let tilt = rotation_from_rational_quaternion(&[w, nx, ny, nz]);
             // Radius changed by +-d.
-            let r = if rng.signed_int(0, 1) == 0 { r + &d } else { r - &d };
+            let r = if rng.signed_int(0, 1) == 0 {
+                r + &d
+            } else {
+                r - &d
+            };
             let zero = [Rational::new(), Rational::new(), Rational::new()];
             (RCircle::rotated(zero, &rot, r).moved(&tilt, &centre), None)
         }
