@@ -100,11 +100,7 @@ impl FclShape {
     /// The hierarchy of FCL method `m` ([`method_name`]).
     fn bvh(&self, m: usize) -> &FclMesh {
         let l = &self.layouts[m / 2];
-        if m % 2 == 0 {
-            &l.obbrss
-        } else {
-            &l.rss
-        }
+        [&l.obbrss, &l.rss][m % 2]
     }
 }
 

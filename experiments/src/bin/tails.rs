@@ -695,7 +695,7 @@ fn nesting_pairs(
                 },
             );
             let (lower, upper) = surface_gap(so, si, &pose, 1e-6);
-            (d.overlap && lower >= MIN_CLEARANCE).then(|| Nest {
+            (d.overlap && lower >= MIN_CLEARANCE).then_some(Nest {
                 outer,
                 inner,
                 flipped,
