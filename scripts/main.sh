@@ -44,6 +44,7 @@ step profiles     $bin/revdist figures --out "$out"                          # m
 step convergence  $bin/convergence --out "$out" "${paper[@]}"                 # biarcs n^-3 vs chords n^-2
 step bvh_tables   $bin/bvh_tables --out "$out" "${paper[@]}"                  # Tables 1-2, Figure 9
 step query_times  $bin/accuracy_time --out "$out" "${query_poses[@]}"         # where a query spends its time
+step tails        $bin/tails --out "$out"                                      # tail of single-query times: 2,000 seeded queries, cold
 step fcl_bench    $bin/fcl_bench --out "$out" "${fcl_poses[@]}"               # speed ratios vs FCL on close poses
 step motion       $bin/motion --out "$out" "${paper[@]}"                      # Figure 12: 15 pairs in continuous motion
 step deforming    $bin/deforming --out "$out" "${paper[@]}"                   # Figure 8: static models vs M_t

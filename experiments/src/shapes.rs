@@ -67,7 +67,11 @@ mod tests {
         assert_eq!(pairs.len(), 15);
         assert_eq!(pairs[0], ("pawn", "pawn"));
         assert_eq!(pairs[14], ("lightmill", "lightmill"));
-        for name in PAPER_MODELS.iter().chain(&["torus", "morph@0.3"]) {
+        for name in
+            PAPER_MODELS
+                .iter()
+                .chain(&["torus", "morph@0.3", "morph@0.7", "pawn_ff", "table_ff"])
+        {
             let p = profile(name).unwrap();
             assert!(diagonal(&p) > 0.0);
             let (_, r) = centre(&p);

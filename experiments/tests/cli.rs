@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Every driver, and a flag of it that takes a value.
-const DRIVERS: [(&str, &str); 10] = [
+const DRIVERS: [(&str, &str); 11] = [
     (env!("CARGO_BIN_EXE_accuracy_time"), "--out"),
     (env!("CARGO_BIN_EXE_bvh_tables"), "--out"),
     (env!("CARGO_BIN_EXE_convergence"), "--out"),
@@ -17,6 +17,7 @@ const DRIVERS: [(&str, &str); 10] = [
     (env!("CARGO_BIN_EXE_patch_kernels"), "--patch-pairs"),
     (env!("CARGO_BIN_EXE_query_cost"), "--poses"),
     (env!("CARGO_BIN_EXE_stability"), "--seeds"),
+    (env!("CARGO_BIN_EXE_tails"), "--poses"),
 ];
 
 /// An empty folder to run in, so that anything a driver writes would show.

@@ -12,7 +12,9 @@
 //!   layout per row to be fair to FCL;
 //! * build time (revdist tree vs tessellation + BVH), memory (revdist query tree vs FCL's
 //!   node, triangle and vertex arrays), triangle counts, revdist's widest certified interval
-//!   against the meshes' bounds h_a + h_b, and the speed ratio FCL / revdist;
+//!   against the meshes' bounds h_a + h_b, and the speed ratio of the faster FCL BV
+//!   (OBBRSS or RSS, each in its faster layout; RSS is often 10-20% faster) over revdist,
+//!   with a column naming that BV;
 //! * a cross-check of every timed answer: revdist's interval must meet FCL's `d ± (h_a +
 //!   h_b)` (`verify::crosscheck::criterion`); the count of violations is reported.
 //!
@@ -24,15 +26,24 @@
 //! that no untimed query warms a timed one): the *cold* time, the
 //! headline, as when an application alternates between many pairs. The second time is the
 //! *warm* time of the same query with its trees and code cached. After the interleaved pass,
-//! revdist and FCL OBBRSS (each layout) also run *blocked*: each alone over all poses in a
+//! revdist, FCL OBBRSS (each layout) and FCL RSS (its faster cold layout) also run
+//! *blocked*: each alone over all poses in a
 //! row, the usual benchmark loop over one pair (its code and, for revdist's small trees, its
 //! data stay cached from pose to pose).
+//!
+//! Default pairs: the exact models (torus-torus, pawn-pawn, pawn-cup, cup-bottle,
+//! table-lightmill) at eps 1e-3, 1e-4, 1e-5, and the freeform family
+//! (pawn_ff-pawn_ff, pawn_ff-cup_ff, cup_ff-bottle_ff, table_ff-lightmill_ff) and M_t frames
+//! (morph@0.3-pawn, morph@0.7-cup). To keep the default run (and the main job's step) near
+//! 1.5x the exact pairs' time, the added pairs run at half the poses and at eps 1e-3 and 1e-4
+//! only (their eps-1e-5 meshes take seconds per pair to build), unless `--paper` or `--eps`
+//! is given. `--pairs` runs the pairs given, all alike.
 //!
 //! Usage: `fcl_bench [--poses N] [--poses-1e-5 N] [--eps E,...] [--pairs a-b,...] [--paper]
 //! [--seed S] [--out DIR]` (`--full` is an alias of `--paper`). Writes `DIR/fcl_bench.csv` and `DIR/fcl_bench.md` (default `figures`).
 
 use clap::Parser;
-use experiments::args::{model_pairs, positive_count};
+use experiments::args::{model_pairs, positive_count, ModelPair};
 use experiments::baseline_mesh::{agrees_with_fcl, Layout};
 use experiments::cli::{count_at, Common};
 use experiments::driver::{self, DriverResult};
@@ -50,8 +61,19 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// The pairs of the speed table: two solid tori (closed form) and four pairs of the paper's
-/// models.
+/// exact models.
 const DEFAULT_PAIRS: &str = "torus-torus,pawn-pawn,pawn-cup,cup-bottle,table-lightmill";
+/// Added to the default list: the freeform family (NURBS profiles, `*_ff`) and
+/// frames of the deformable model M_t (`morph@T`). Without `--paper` these run at
+/// [`ADDED_EPS`] only (unless `--eps` is given) and at 1/[`ADDED_POSES_DIVISOR`] of the poses,
+/// so that the default run (and the main job's step) takes about 1.5x the exact pairs' time:
+/// their meshes at eps 1e-5 take seconds per pair to tessellate and build.
+const ADDED_PAIRS: &str = "pawn_ff-pawn_ff,pawn_ff-cup_ff,cup_ff-bottle_ff,\
+                           table_ff-lightmill_ff,morph@0.3-pawn,morph@0.7-cup";
+/// The eps of the added pairs in a default run (`--eps` or `--paper`: the full list).
+const ADDED_EPS: [f64; 2] = [1e-3, 1e-4];
+/// The added pairs run this fraction of the poses (rounded up) in a default run.
+const ADDED_POSES_DIVISOR: usize = 2;
 /// Poses per pair at eps 1e-3 and 1e-4 (default run).
 const DEFAULT_POSES: usize = 200;
 /// Poses per pair at eps 1e-5 and below (default run): the same first poses, fewer of them,
@@ -68,8 +90,9 @@ const EDGE_CAP_REL: f64 = 1.0 / 64.0;
 /// poses near contact, the median query time of revdist (default tolerance, and tolerance 0
 /// with the traversal only) and of FCL OBBRSS and RSS on certified meshes in two layouts
 /// (cold, warm and blocked), with build times, memory, triangle counts, the widest certified
-/// interval, the speed ratios and a cross-check of every answer. Writes fcl_bench.csv and .md
-/// (200 poses per pair, 100 below eps 5e-5; 1,000 with --paper, alias --full).
+/// interval, the speed ratios (vs the faster FCL BV) and a cross-check of every answer.
+/// Writes fcl_bench.csv and .md (200 poses per pair, 100 below eps 5e-5; 1,000 with --paper,
+/// alias --full; the default freeform and M_t pairs: half the poses, eps 1e-3 and 1e-4).
 #[derive(Parser)]
 #[command(mut_arg("paper", |a| a.visible_alias("full")))]
 struct Args {
@@ -91,12 +114,15 @@ struct Row {
     /// Per layout: (OBBRSS median, RSS median).
     fcl: Vec<(f64, f64)>,
     /// Warm medians (the query repeated at once on the same pose): revdist at the default
-    /// tolerance, and FCL OBBRSS per layout.
+    /// tolerance, and FCL OBBRSS and RSS per layout.
     rev_trees_warm: f64,
     fcl_obbrss_warm: Vec<f64>,
-    /// Blocked medians (each method alone over all poses in a row).
+    fcl_rss_warm: Vec<f64>,
+    /// Blocked medians (each method alone over all poses in a row): revdist, FCL OBBRSS per
+    /// layout, and FCL RSS in its faster cold layout (`best_rss`).
     rev_trees_blocked: f64,
     fcl_obbrss_blocked: Vec<f64>,
+    fcl_rss_blocked: f64,
     best_obbrss: usize,
     best_rss: usize,
     tris: Vec<usize>,
@@ -115,6 +141,19 @@ struct Row {
 
 const LAYOUT_NAMES: [&str; 2] = ["balanced", "capped"];
 
+/// FCL's two bounding-volume types, as the tables name them.
+const BV_NAMES: [&str; 2] = ["OBBRSS", "RSS"];
+
+/// The faster of FCL's two BVs given their times `(OBBRSS, RSS)`: its index in [`BV_NAMES`]
+/// and its time (OBBRSS on a tie).
+fn faster_bv((obbrss, rss): (f64, f64)) -> (usize, f64) {
+    if rss < obbrss {
+        (1, rss)
+    } else {
+        (0, obbrss)
+    }
+}
+
 impl Row {
     /// FCL OBBRSS's and RSS's cold medians in their faster layouts.
     fn best_obbrss_us(&self) -> f64 {
@@ -123,12 +162,36 @@ impl Row {
     fn best_rss_us(&self) -> f64 {
         self.fcl[self.best_rss].1
     }
-    /// FCL OBBRSS over revdist, warm and blocked (OBBRSS in its faster cold layout).
+    /// The faster FCL BV cold (each BV in its faster layout): index in [`BV_NAMES`], median.
+    fn faster(&self) -> (usize, f64) {
+        faster_bv((self.best_obbrss_us(), self.best_rss_us()))
+    }
+    /// The layout of the faster FCL BV cold.
+    fn faster_layout(&self) -> usize {
+        [self.best_obbrss, self.best_rss][self.faster().0]
+    }
+    /// The faster FCL BV warm and blocked (each BV in its faster cold layout).
+    fn faster_warm(&self) -> (usize, f64) {
+        faster_bv((
+            self.fcl_obbrss_warm[self.best_obbrss],
+            self.fcl_rss_warm[self.best_rss],
+        ))
+    }
+    fn faster_blocked(&self) -> (usize, f64) {
+        faster_bv((
+            self.fcl_obbrss_blocked[self.best_obbrss],
+            self.fcl_rss_blocked,
+        ))
+    }
+    /// The faster FCL BV over revdist (default tolerance), cold, warm and blocked.
+    fn ratio(&self) -> f64 {
+        self.faster().1 / self.rev_trees.0
+    }
     fn warm_ratio(&self) -> f64 {
-        self.fcl_obbrss_warm[self.best_obbrss] / self.rev_trees_warm
+        self.faster_warm().1 / self.rev_trees_warm
     }
     fn blocked_ratio(&self) -> f64 {
-        self.fcl_obbrss_blocked[self.best_obbrss] / self.rev_trees_blocked
+        self.faster_blocked().1 / self.rev_trees_blocked
     }
 }
 
@@ -143,29 +206,60 @@ fn run(args: Args) -> DriverResult {
         args.poses_fine
             .unwrap_or(c.paper.pick(DEFAULT_POSES_FINE, FULL_POSES)),
     );
-    let (eps_list, pairs) = (
-        c.eps.or(&PAPER_EPS),
-        c.pairs.or(&model_pairs(DEFAULT_PAIRS)),
-    );
+    let eps_list = c.eps.or(&PAPER_EPS);
+    // (pair, its eps, its pose counts): the given pairs all alike; the default list's added
+    // pairs (freeform, M_t) lighter unless --paper (see ADDED_PAIRS).
+    let mut plan: Vec<(ModelPair, Vec<f64>, (usize, usize))> = Vec::new();
+    if c.pairs.list.is_empty() {
+        let light = !c.paper.on;
+        let added_eps = if light && c.eps.list.is_empty() {
+            ADDED_EPS.to_vec()
+        } else {
+            eps_list.clone()
+        };
+        let added_poses = if light {
+            (
+                poses.0.div_ceil(ADDED_POSES_DIVISOR),
+                poses.1.div_ceil(ADDED_POSES_DIVISOR),
+            )
+        } else {
+            poses
+        };
+        for p in model_pairs(DEFAULT_PAIRS) {
+            plan.push((p, eps_list.clone(), poses));
+        }
+        for p in model_pairs(ADDED_PAIRS) {
+            plan.push((p, added_eps.clone(), added_poses));
+        }
+    } else {
+        for p in &c.pairs.list {
+            plan.push((p.clone(), eps_list.clone(), poses));
+        }
+    }
     let seed = c.seed.or(CLOSE_SEED);
     let started = Instant::now();
     let mut rows = Vec::new();
-    for (na, nb) in &pairs {
+    for ((na, nb), pair_eps, pair_poses) in &plan {
         let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
         // Poses placed once per pair (fine trees), reused at every eps.
-        let n_max = poses.0.max(poses.1);
+        let n_max = pair_eps
+            .iter()
+            .map(|&e| count_at(e, *pair_poses))
+            .max()
+            .unwrap_or(0);
         let pair = format!("{na}-{nb}");
         let placed = close_poses(&pa, &pb, n_max, GAPS, pair_seed(seed, &pair), || {})?;
-        for &eps in &eps_list {
-            let n = count_at(eps, poses);
+        for &eps in pair_eps {
+            let n = count_at(eps, *pair_poses);
             rows.push(bench_row(&pair, (&pa, &pb), eps, &placed[..n])?);
             let r = rows.last().expect("row");
             eprintln!(
-                "{pair} eps {eps:.0e}: revdist {:.1} us, FCL OBBRSS {:.1} us ({}), ratio {:.2} [{:.0} s]",
+                "{pair} eps {eps:.0e}: revdist {:.1} us, FCL {} {:.1} us ({}), ratio {:.2} [{:.0} s]",
                 r.rev_trees.0,
-                r.fcl[r.best_obbrss].0,
-                LAYOUT_NAMES[r.best_obbrss],
-                r.fcl[r.best_obbrss].0 / r.rev_trees.0,
+                BV_NAMES[r.faster().0],
+                r.faster().1,
+                LAYOUT_NAMES[r.faster_layout()],
+                r.ratio(),
                 started.elapsed().as_secs_f64()
             );
         }
@@ -178,9 +272,10 @@ fn run(args: Args) -> DriverResult {
             ("eps", format!("{eps_list:?}")),
             (
                 "pairs",
-                pairs
-                    .iter()
-                    .map(|(a, b)| format!("{a}-{b}"))
+                plan.iter()
+                    .map(|((a, b), e, (n, n_fine))| {
+                        format!("{a}-{b} (eps {e:?}, poses {n}/{n_fine})")
+                    })
                     .collect::<Vec<_>>()
                     .join(" "),
             ),
@@ -332,8 +427,16 @@ fn bench_row(
         row.fcl
             .push((median(&times[2 + 2 * l]), median(&times[3 + 2 * l])));
         row.fcl_obbrss_warm.push(median(&warm_times[2 + 2 * l]));
+        row.fcl_rss_warm.push(median(&warm_times[3 + 2 * l]));
     }
     row.rev_trees_warm = median(&warm_times[0]);
+    let best = |f: &dyn Fn(&(f64, f64)) -> f64| {
+        (0..row.fcl.len())
+            .min_by(|&x, &y| f(&row.fcl[x]).total_cmp(&f(&row.fcl[y])))
+            .expect("a layout")
+    };
+    row.best_obbrss = best(&|x| x.0);
+    row.best_rss = best(&|x| x.1);
     // Blocked: each method alone over all poses (answers were cross-checked above).
     let blocked = time_each(poses.iter().map(|pose| sb.with_pose(*pose)), |b| {
         std::hint::black_box(distance(&sa, &b, &trees));
@@ -348,13 +451,14 @@ fn bench_row(
         })?;
         row.fcl_obbrss_blocked.push(median(&blocked));
     }
-    let best = |f: &dyn Fn(&(f64, f64)) -> f64| {
-        (0..row.fcl.len())
-            .min_by(|&x, &y| f(&row.fcl[x]).total_cmp(&f(&row.fcl[y])))
-            .expect("a layout")
-    };
-    row.best_obbrss = best(&|x| x.0);
-    row.best_rss = best(&|x| x.1);
+    // FCL RSS blocked in its faster cold layout only (the blocked ratio takes the faster BV).
+    let (la, lb) = &layouts[row.best_rss];
+    let lb = lb.as_ref().unwrap_or(la);
+    let blocked = time_each(poses, |pose| {
+        std::hint::black_box(la.rss.distance(&lb.rss, &id, pose)?);
+        Ok::<(), Box<dyn std::error::Error>>(())
+    })?;
+    row.fcl_rss_blocked = median(&blocked);
     Ok(row)
 }
 
@@ -377,6 +481,17 @@ fn csv_table() -> Table<'static, Row> {
         .csv("fcl_rss_capped_us", fixed(2, |r| r.fcl[1].1))
         .csv("best_obbrss_layout", |r| LAYOUT_NAMES[r.best_obbrss].into())
         .csv("best_rss_layout", |r| LAYOUT_NAMES[r.best_rss].into())
+        // The headline: the faster FCL BV (cold, each BV in its faster layout) over revdist.
+        .csv("faster_fcl_bv", |r| BV_NAMES[r.faster().0].into())
+        .csv("faster_fcl_bv_layout", |r| {
+            LAYOUT_NAMES[r.faster_layout()].into()
+        })
+        .csv("faster_fcl_bv_us", fixed(2, |r| r.faster().1))
+        .csv("ratio_vs_faster_fcl_bv", fixed(3, Row::ratio))
+        .csv(
+            "ratio_vs_faster_fcl_bv_tol0",
+            fixed(3, |r| r.faster().1 / r.rev_exact.0),
+        )
         .csv(
             "ratio_obbrss_over_rev",
             fixed(3, |r| r.best_obbrss_us() / r.rev_trees.0),
@@ -384,10 +499,6 @@ fn csv_table() -> Table<'static, Row> {
         .csv(
             "ratio_rss_over_rev",
             fixed(3, |r| r.best_rss_us() / r.rev_trees.0),
-        )
-        .csv(
-            "ratio_obbrss_over_rev_tol0",
-            fixed(3, |r| r.best_obbrss_us() / r.rev_exact.0),
         )
         .csv("tris_balanced", count(|r| r.tris[0]))
         .csv("tris_capped", count(|r| r.tris[1]))
@@ -411,7 +522,7 @@ fn csv_table() -> Table<'static, Row> {
         .csv("obbrss_bytes_capped", count(|r| r.obbrss_bytes[1]))
         .csv("rss_bytes_capped", count(|r| r.rss_bytes[1]))
         .csv("violations", count(|r| r.violations))
-        // Warm and blocked columns come last, so that older readers keep their indices.
+        // Warm and blocked columns come last (readers find columns by their header).
         .csv("rev_trees_warm_median_us", fixed(2, |r| r.rev_trees_warm))
         .csv(
             "fcl_obbrss_balanced_warm_us",
@@ -421,7 +532,10 @@ fn csv_table() -> Table<'static, Row> {
             "fcl_obbrss_capped_warm_us",
             fixed(2, |r| r.fcl_obbrss_warm[1]),
         )
-        .csv("ratio_obbrss_over_rev_warm", fixed(3, Row::warm_ratio))
+        .csv("fcl_rss_balanced_warm_us", fixed(2, |r| r.fcl_rss_warm[0]))
+        .csv("fcl_rss_capped_warm_us", fixed(2, |r| r.fcl_rss_warm[1]))
+        .csv("faster_fcl_bv_warm", |r| BV_NAMES[r.faster_warm().0].into())
+        .csv("ratio_vs_faster_fcl_bv_warm", fixed(3, Row::warm_ratio))
         .csv(
             "rev_trees_blocked_median_us",
             fixed(2, |r| r.rev_trees_blocked),
@@ -435,7 +549,14 @@ fn csv_table() -> Table<'static, Row> {
             fixed(2, |r| r.fcl_obbrss_blocked[1]),
         )
         .csv(
-            "ratio_obbrss_over_rev_blocked",
+            "fcl_rss_best_layout_blocked_us",
+            fixed(2, |r| r.fcl_rss_blocked),
+        )
+        .csv("faster_fcl_bv_blocked", |r| {
+            BV_NAMES[r.faster_blocked().0].into()
+        })
+        .csv(
+            "ratio_vs_faster_fcl_bv_blocked",
             fixed(3, Row::blocked_ratio),
         )
 }
@@ -450,6 +571,8 @@ fn pair_and_eps() -> Table<'static, Row> {
 /// The main Markdown table: cold medians, the faster layout per FCL column.
 fn cold_table() -> Table<'static, Row> {
     pair_and_eps()
+        .markdown("poses", |r| r.poses.to_string())
+        .right()
         .markdown("triangles A+B", |r| r.tris[r.best_obbrss].to_string())
         .right()
         .markdown("revdist median / p90 us", |r| {
@@ -472,9 +595,8 @@ fn cold_table() -> Table<'static, Row> {
             format!("{:.1} ({})", r.best_rss_us(), LAYOUT_NAMES[r.best_rss])
         })
         .right()
-        .markdown("ratio OBBRSS / revdist", |r| {
-            format!("{:.2}", r.best_obbrss_us() / r.rev_trees.0)
-        })
+        .markdown("faster FCL BV", |r| BV_NAMES[r.faster().0].into())
+        .markdown("ratio vs faster FCL BV", |r| format!("{:.2}", r.ratio()))
         .right()
         .markdown("build revdist / mesh+OBBRSS ms", |r| {
             let o = r.best_obbrss;
@@ -499,22 +621,28 @@ fn cold_table() -> Table<'static, Row> {
         .right()
 }
 
-/// Blocked and warm medians, FCL OBBRSS in the layout of the main table.
+/// Blocked and warm medians, FCL's faster BV in each mode (each BV in its faster cold layout).
 fn blocked_warm_table() -> Table<'static, Row> {
     let us = |f: fn(&Row) -> f64| move |r: &Row| format!("{:.1}", f(r));
     let ratio = |f: fn(&Row) -> f64| move |r: &Row| format!("{:.2}", f(r));
+    let fcl = |f: fn(&Row) -> (usize, f64)| {
+        move |r: &Row| {
+            let (bv, t) = f(r);
+            format!("{t:.1} ({})", BV_NAMES[bv])
+        }
+    };
     pair_and_eps()
         .markdown("revdist blocked", us(|r| r.rev_trees_blocked))
         .right()
-        .markdown("FCL blocked", us(|r| r.fcl_obbrss_blocked[r.best_obbrss]))
+        .markdown("FCL blocked (faster BV)", fcl(Row::faster_blocked))
         .right()
-        .markdown("ratio blocked", ratio(Row::blocked_ratio))
+        .markdown("ratio blocked vs faster FCL BV", ratio(Row::blocked_ratio))
         .right()
         .markdown("revdist warm", us(|r| r.rev_trees_warm))
         .right()
-        .markdown("FCL warm", us(|r| r.fcl_obbrss_warm[r.best_obbrss]))
+        .markdown("FCL warm (faster BV)", fcl(Row::faster_warm))
         .right()
-        .markdown("ratio warm", ratio(Row::warm_ratio))
+        .markdown("ratio warm vs faster FCL BV", ratio(Row::warm_ratio))
         .right()
         .markdown(
             "cold / blocked revdist",
@@ -523,7 +651,7 @@ fn blocked_warm_table() -> Table<'static, Row> {
         .right()
         .markdown(
             "cold / blocked FCL",
-            ratio(|r| r.best_obbrss_us() / r.fcl_obbrss_blocked[r.best_obbrss]),
+            ratio(|r| r.faster().1 / r.faster_blocked().1),
         )
         .right()
 }
@@ -572,7 +700,9 @@ fn markdown(rows: &[Row], poses: (usize, usize), wall: Duration) -> String {
     let _ = writeln!(
         s,
         "Machine: {}. Commit: {}. Poses per pair: {} (eps >= 5e-5), {} (eps < 5e-5; the first \
-         poses of the same sequence), gaps log-uniform in [{:e}, {:e}], seeded; wall time {:.0} s.\n",
+         poses of the same sequence; the default list's freeform and M_t pairs: half as many, \
+         at eps 1e-3 and 1e-4 only, unless --paper; the `poses` column tells), gaps \
+         log-uniform in [{:e}, {:e}], seeded; wall time {:.0} s.\n",
         machine(),
         git_commit(),
         poses.0,
@@ -587,7 +717,8 @@ fn markdown(rows: &[Row], poses: (usize, usize), wall: Duration) -> String {
          and tolerance 0 with the traversal only (no closed form). FCL: \
          `BVHModel<OBBRSS>` / `<RSS>` on certified meshes (two-sided Hausdorff bound <= eps), \
          the faster of two layouts per column (balanced; meridian edges capped at 1/64 of the \
-         profile diagonal). Ratio = FCL OBBRSS median / revdist median (default tolerance). \
+         profile diagonal). Ratio = median of the faster FCL BV (OBBRSS or RSS, each in its \
+         faster layout; named in the column before) / revdist median (default tolerance). \
          Memory: revdist query-tree arrays vs FCL's node, triangle and vertex arrays (both \
          shapes; one when A = B). Build: revdist trees vs tessellation + OBBRSS build (layout \
          of the OBBRSS column). Violations: cases where revdist's interval misses FCL's \
@@ -599,7 +730,8 @@ fn markdown(rows: &[Row], poses: (usize, usize), wall: Duration) -> String {
     s.push_str(&cold_table().markdown_text(rows));
     s.push_str(
         "\nBlocked (each method alone over all poses in a row) and warm (each query repeated at \
-         once on the same pose); FCL OBBRSS in the layout of the first table; medians, us:\n\n",
+         once on the same pose); FCL: the faster BV in that mode, each BV in its layout of the \
+         first table; medians, us:\n\n",
     );
     s.push_str(&blocked_warm_table().markdown_text(rows));
     s.push_str("\nAll layouts (FCL medians, us; triangles):\n\n");

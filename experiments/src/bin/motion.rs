@@ -10,9 +10,11 @@
 //!
 //! **Methods.** revdist at its default tolerance (interval width <= eps_a + eps_b), warm
 //! started from the previous frame's best leaf pair (`distance_cached`, the intended use in
-//! motion); FCL `BVHModel<OBBRSS>` on certified meshes of the same eps in two layouts
-//! (balanced vertices, and meridian edges capped), keeping the faster layout per row as
-//! `fcl_bench` does. Queries are timed one at a time on one thread, methods interleaved
+//! motion); FCL `BVHModel<OBBRSS>` and `BVHModel<RSS>` on certified meshes of the same eps
+//! in two layouts (balanced vertices, and meridian edges capped). The speed ratio of a row
+//! is against the faster FCL method (lowest mean over the motion; the faster BV, RSS often
+//! by 10-20%, in its faster layout), named in the `faster_fcl_bv` and `best_layout`
+//! columns; all four FCL means are kept. Queries are timed one at a time on one thread, methods interleaved
 //! per frame in a rotating order. Every revdist answer is cross-checked against FCL's
 //! (`verify::crosscheck::criterion`); violations are reported and fail the run.
 //!
@@ -21,9 +23,7 @@
 
 use clap::Parser;
 use experiments::args::ModelPair;
-use experiments::baseline_mesh::{
-    agrees_with_fcl, certified_mesh, obbrss_of, EDGE_CAP_REL, LAYOUT_NAMES,
-};
+use experiments::baseline_mesh::{agrees_with_fcl, Layout, EDGE_CAP_REL, LAYOUT_NAMES};
 use experiments::cli::{count_at, Eps, Frames, Out, Pairs, Paper, Seed};
 use experiments::driver::{self, DriverResult};
 use experiments::plot::{colour, grouped_bars_coloured, BarSeries};
@@ -37,7 +37,6 @@ use nalgebra::Isometry3;
 use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};
 use revdist::solid::Solid;
-use revdist::tessellate::CertifiedMesh;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -61,7 +60,7 @@ const SEED: u64 = 0xf16_0012;
 
 /// The paper's 15 model pairs in continuous motion (Figure 12): per pair and eps, the mean
 /// query time of revdist (default tolerance, warm-started from the previous frame) against
-/// FCL 0.7 OBBRSS on certified meshes of the same eps, over a smooth seeded rigid motion
+/// the faster of FCL 0.7 OBBRSS and RSS on certified meshes of the same eps, over a smooth seeded rigid motion
 /// that often comes close; methods interleaved per frame and also run blocked, every revdist
 /// answer cross-checked against FCL's. Writes motion.csv, motion.md and motion_eps{E}.svg
 /// (200 frames per pair, 100 below eps 5e-5; 50,000 with --paper).
@@ -81,9 +80,10 @@ struct Args {
     seed: Seed,
 }
 
-/// FCL's structures of one shape at one eps: both layouts' certified meshes and OBBRSS.
+/// FCL's structures of one shape at one eps: both layouts' certified meshes with their
+/// OBBRSS and RSS hierarchies.
 struct FclShape {
-    layouts: Vec<(CertifiedMesh, FclMesh)>,
+    layouts: Vec<Layout>,
 }
 
 impl FclShape {
@@ -92,12 +92,24 @@ impl FclShape {
         for cap in [None, Some(EDGE_CAP_REL * diagonal(p))] {
             // The capped layout needs a cap above 2 eps (the tessellator's requirement).
             let cap = cap.filter(|&c| c > 2.0 * eps);
-            let (cm, _) = certified_mesh(p, eps, cap)?;
-            let bvh = obbrss_of(&cm)?;
-            layouts.push((cm, bvh));
+            layouts.push(Layout::build(p, eps, cap)?);
         }
         Ok(FclShape { layouts })
     }
+
+    /// The hierarchy of FCL method `m` ([`method_name`]).
+    fn bvh(&self, m: usize) -> &FclMesh {
+        let l = &self.layouts[m / 2];
+        [&l.obbrss, &l.rss][m % 2]
+    }
+}
+
+/// FCL's BV types, in the order of the methods of a layout.
+const BV_NAMES: [&str; 2] = ["OBBRSS", "RSS"];
+
+/// FCL method `m`: layout `m / 2` ([`LAYOUT_NAMES`]), BV `m % 2` ([`BV_NAMES`]).
+fn method_name(m: usize) -> (&'static str, &'static str) {
+    (LAYOUT_NAMES[m / 2], BV_NAMES[m % 2])
 }
 
 /// One pair at one eps.
@@ -106,12 +118,13 @@ struct Row {
     eps: f64,
     frames: usize,
     rev_us: Vec<f64>,
-    /// Per layout: query times.
+    /// Per FCL method (layout `m / 2`, BV `m % 2`: [`method_name`]): query times.
     fcl_us: Vec<Vec<f64>>,
-    /// Blocked: revdist alone over the whole motion (warm starts), then FCL OBBRSS in the
-    /// faster layout alone: mean query times.
+    /// Blocked: revdist alone over the whole motion (warm starts), then the faster FCL
+    /// method alone: mean query times.
     rev_blocked_mean: f64,
     fcl_blocked_mean: f64,
+    /// The faster FCL method (lowest mean): BV and layout, the faster of OBBRSS and RSS.
     best: usize,
     triangles: Vec<usize>,
     node_pairs: f64,
@@ -122,6 +135,12 @@ struct Row {
 }
 
 impl Row {
+    fn fcl_mean_of(&self, bv: usize, layout: usize) -> String {
+        self.fcl_us
+            .get(2 * layout + bv)
+            .map(|v| format!("{:.2}", mean(v)))
+            .unwrap_or_default()
+    }
     fn fcl_mean(&self) -> f64 {
         mean(&self.fcl_us[self.best])
     }
@@ -173,7 +192,7 @@ fn run(args: Args) -> DriverResult {
             ),
             (
                 "fcl",
-                "OBBRSS on certified meshes, faster of two layouts".into(),
+                "OBBRSS and RSS on certified meshes, two layouts; ratio vs the faster".into(),
             ),
             ("seed", format!("{seed:#x}")),
         ],
@@ -223,14 +242,12 @@ fn run(args: Args) -> DriverResult {
                 eps,
                 frames: n,
                 rev_us: Vec::with_capacity(n),
-                fcl_us: vec![Vec::with_capacity(n); layouts],
+                fcl_us: vec![Vec::with_capacity(n); 2 * layouts],
                 rev_blocked_mean: 0.0,
                 fcl_blocked_mean: 0.0,
                 best: 0,
                 triangles: (0..layouts)
-                    .map(|l| {
-                        fa.layouts[l].0.mesh.triangles.len() + fb.layouts[l].0.mesh.triangles.len()
-                    })
+                    .map(|l| fa.layouts[l].triangles() + fb.layouts[l].triangles())
                     .collect(),
                 node_pairs: 0.0,
                 exact_leaves: 0.0,
@@ -239,9 +256,9 @@ fn run(args: Args) -> DriverResult {
             };
             for (k, pose) in poses[..n].iter().enumerate() {
                 let posed = sb.with_pose(*pose);
-                let methods = 1 + layouts;
-                // Answers of this frame: revdist's, and FCL's on the balanced layout (the
-                // timed call's result is reused for the cross-check).
+                let methods = 1 + 2 * layouts;
+                // Answers of this frame: revdist's, and FCL OBBRSS's on the balanced layout
+                // (the timed call's result is reused for the cross-check).
                 let (mut rev, mut fcl_balanced) = (None, None);
                 for j in 0..methods {
                     let m = (j + k) % methods;
@@ -251,15 +268,13 @@ fn run(args: Args) -> DriverResult {
                         row.rev_us.push(us(t.elapsed()));
                         rev = Some(d);
                     } else {
-                        let l = m - 1;
+                        let f_m = m - 1;
                         let t = Instant::now();
-                        let f = fa.layouts[l].1.distance(
-                            &fb.layouts[l].1,
-                            &Isometry3::identity(),
-                            pose,
-                        )?;
-                        row.fcl_us[l].push(us(t.elapsed()));
-                        if l == 0 {
+                        let f = fa
+                            .bvh(f_m)
+                            .distance(fb.bvh(f_m), &Isometry3::identity(), pose)?;
+                        row.fcl_us[f_m].push(us(t.elapsed()));
+                        if f_m == 0 {
                             fcl_balanced = Some(f.distance);
                         }
                     }
@@ -271,7 +286,7 @@ fn run(args: Args) -> DriverResult {
                 row.node_pairs += d.stats.node_pairs as f64;
                 row.exact_leaves += d.stats.leaf_tests as f64;
                 row.min_gap = row.min_gap.min(if d.overlap { -1.0 } else { d.value });
-                let h = fa.layouts[0].0.bound + fb.layouts[0].0.bound;
+                let h = fa.layouts[0].cm.bound + fb.layouts[0].cm.bound;
                 if !agrees_with_fcl(&d, f, h, pose, size) {
                     row.violations += 1;
                     eprintln!(
@@ -283,7 +298,7 @@ fn run(args: Args) -> DriverResult {
             }
             row.node_pairs /= n as f64;
             row.exact_leaves /= n as f64;
-            row.best = (0..layouts)
+            row.best = (0..2 * layouts)
                 .min_by(|&x, &y| mean(&row.fcl_us[x]).total_cmp(&mean(&row.fcl_us[y])))
                 .unwrap_or(0);
             // Blocked: each method alone over the whole motion, as a simulation loop over
@@ -294,10 +309,10 @@ fn run(args: Args) -> DriverResult {
                 Ok::<(), Box<dyn std::error::Error>>(())
             })?;
             row.rev_blocked_mean = mean(&times);
-            let l = row.best;
+            let best = row.best;
             let times = time_each(&poses[..n], |pose| {
-                std::hint::black_box(fa.layouts[l].1.distance(
-                    &fb.layouts[l].1,
+                std::hint::black_box(fa.bvh(best).distance(
+                    fb.bvh(best),
                     &Isometry3::identity(),
                     pose,
                 )?);
@@ -329,14 +344,7 @@ fn run(args: Args) -> DriverResult {
 
 /// The columns of `motion.csv` and of the table in `motion.md`.
 fn motion_table() -> Table<'static, Row> {
-    let layout_mean = |l: usize| {
-        move |r: &Row| {
-            r.fcl_us
-                .get(l)
-                .map(|v| format!("{:.2}", mean(v)))
-                .unwrap_or_default()
-        }
-    };
+    let fcl_mean = |bv: usize, layout: usize| move |r: &Row| r.fcl_mean_of(bv, layout);
     Table::new()
         .csv("pair", |r: &Row| r.pair.clone())
         .with_markdown_header("pair")
@@ -351,28 +359,43 @@ fn motion_table() -> Table<'static, Row> {
             format!("{:.0} / {:.0}", mean(&r.rev_us), median(&r.rev_us))
         })
         .right()
-        .csv("fcl_obbrss_balanced_mean_us", layout_mean(0))
-        .csv("fcl_obbrss_capped_mean_us", layout_mean(1))
-        .csv("best_layout", |r| LAYOUT_NAMES[r.best].to_owned())
+        .csv("fcl_obbrss_balanced_mean_us", fcl_mean(0, 0))
+        .csv("fcl_obbrss_capped_mean_us", fcl_mean(0, 1))
+        .csv("fcl_rss_balanced_mean_us", fcl_mean(1, 0))
+        .csv("fcl_rss_capped_mean_us", fcl_mean(1, 1))
+        .markdown("FCL OBBRSS / RSS mean (us)", |r| {
+            let best = |bv: usize| {
+                (0..r.fcl_us.len() / 2)
+                    .map(|l| mean(&r.fcl_us[2 * l + bv]))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            format!("{:.0} / {:.0}", best(0), best(1))
+        })
+        .right()
+        .csv("faster_fcl_bv", |r| method_name(r.best).1.to_owned())
+        .with_markdown_header("faster FCL BV")
+        .csv("best_layout", |r| method_name(r.best).0.to_owned())
+        .with_markdown_header("layout")
         .csv("fcl_best_mean_us", |r| format!("{:.2}", r.fcl_mean()))
         .csv("fcl_best_median_us", |r| format!("{:.2}", r.fcl_median()))
-        .markdown("FCL OBBRSS mean / median (us)", |r| {
+        .markdown("faster FCL BV mean / median (us)", |r| {
             format!("{:.0} / {:.0}", r.fcl_mean(), r.fcl_median())
         })
         .right()
-        .markdown("layout", |r| LAYOUT_NAMES[r.best].to_owned())
-        .csv("ratio_fcl_over_revdist_mean", |r| {
+        .csv("ratio_vs_faster_fcl_bv_mean", |r| {
             format!("{:.3}", r.ratio())
         })
-        .with_markdown("ratio", |r| format!("{:.2}x", r.ratio()))
+        .with_markdown("ratio vs faster FCL BV", |r| format!("{:.2}x", r.ratio()))
         .right()
         .markdown("blocked revdist / FCL mean (us)", |r| {
             format!("{:.0} / {:.0}", r.rev_blocked_mean, r.fcl_blocked_mean)
         })
         .right()
-        .markdown("blocked ratio", |r| format!("{:.2}x", r.blocked_ratio()))
+        .markdown("blocked ratio vs faster FCL BV", |r| {
+            format!("{:.2}x", r.blocked_ratio())
+        })
         .right()
-        .csv("triangles_best", |r| r.triangles[r.best].to_string())
+        .csv("triangles_best", |r| r.triangles[r.best / 2].to_string())
         .with_markdown_header("triangles A+B")
         .right()
         .csv("mean_node_pairs", |r| format!("{:.1}", r.node_pairs))
@@ -391,7 +414,9 @@ fn motion_table() -> Table<'static, Row> {
         .csv("fcl_best_blocked_mean_us", |r| {
             format!("{:.2}", r.fcl_blocked_mean)
         })
-        .csv("ratio_blocked", |r| format!("{:.3}", r.blocked_ratio()))
+        .csv("ratio_blocked_vs_faster_fcl_bv", |r| {
+            format!("{:.3}", r.blocked_ratio())
+        })
 }
 
 fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
@@ -399,10 +424,11 @@ fn markdown(rows: &[Row], prov: &Provenance, secs: f64) -> String {
         "# The 15 model pairs in continuous motion (paper Figure 12)\n\n\
          Mean query time over a smooth random rigid motion per pair (gap between 1e-3 and 0.3, \
          often close), revdist at its default tolerance with warm starts against FCL \
-         `BVHModel<OBBRSS>` on certified meshes of the same eps (the faster of two layouts), \
-         one query at a time, methods interleaved per frame (so each query finds the caches \
-         holding the other method's data: revdist's trees and code come from memory). Ratio = \
-         FCL mean / revdist mean (> 1: revdist faster). Every revdist answer is checked against \
+         `BVHModel<OBBRSS>` and `BVHModel<RSS>` on certified meshes of the same eps (two \
+         layouts each), one query at a time, methods interleaved per frame (so each query finds \
+         the caches holding the other methods' data: revdist's trees and code come from \
+         memory). Ratio = mean of the faster FCL BV (in its faster layout, both named) / \
+         revdist mean (> 1: revdist faster). Every revdist answer is checked against \
          FCL's. *Blocked*: each method alone over the whole motion, as a simulation loop over \
          one pair runs it.\n\n",
     );
@@ -468,7 +494,7 @@ fn draw(out: &std::path::Path, rows: &[Row], eps: f64) -> Result<(), Box<dyn std
             values: sel.iter().map(|r| mean(&r.rev_us)).collect(),
         },
         BarSeries {
-            name: "FCL OBBRSS".into(),
+            name: "FCL (faster of OBBRSS, RSS)".into(),
             values: sel.iter().map(|r| r.fcl_mean()).collect(),
         },
     ];
