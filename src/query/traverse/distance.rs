@@ -214,14 +214,7 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
         bound: opts.bound,
     };
     let mut s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
-    // Near contact at a coarse tolerance the interval `[0, upper]` can already be as narrow
-    // as the caller asked: it holds the solids' distance whether they touch, overlap, nest
-    // or are apart, so neither a narrower traversal nor an overlap certificate is owed. (Both
-    // made coarse accuracies cost more than fine ones: the lower bound reaches 0 on close
-    // poses only when the tolerance is wide.)
-    let met_at_zero = !s.surfaces_meet && s.upper + slack <= width;
-    if !met_at_zero
-        && !s.surfaces_meet
+    if !s.surfaces_meet
         && s.lower - slack <= 0.0
         && topts.tolerance > 0.0
         && !s.stats.budget_exhausted
@@ -246,9 +239,7 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     let surface_upper = s.upper + slack;
 
     let may_meet = s.surfaces_meet || surface_lower <= 0.0;
-    let verdict = if may_meet && met_at_zero {
-        Verdict::Undecided
-    } else if may_meet {
+    let verdict = if may_meet {
         // A verified interpenetration (deepest common normal with both ends inside the
         // other solid) first, then sampled points of either solid inside the other.
         let pen = s
