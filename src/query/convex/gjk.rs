@@ -125,35 +125,17 @@ pub fn gjk(
     }
 }
 
-/// The point of the simplex's hull closest to the origin, and the vertices (index, weight)
-/// of the face it lies in: the best over all faces whose affine closest point has positive
-/// barycentric weights (the closest point of a hull lies in the relative interior of one
-/// face; every other such point lies in the hull too). The whole tetrahedron is a face when
-/// it contains the origin.
+/// The point of the simplex's hull closest to the origin, and the face (vertex indices and
+/// barycentric weights) it lies in; the whole tetrahedron when it contains the origin.
+/// Region tests after Ericson, *Real-Time Collision Detection*, 5.1.
 fn closest_to_origin(simplex: &[Vertex]) -> (Vector3<f64>, Face) {
-    let n = simplex.len();
-    let mut best = (f64::INFINITY, Vector3::zeros(), Face::default());
-    for mask in 1u32..(1 << n) {
-        let mut face = Face::default();
-        for i in 0..n {
-            if mask & (1 << i) != 0 {
-                face.idx[face.len] = i;
-                face.len += 1;
-            }
-        }
-        if !affine_closest(simplex, &mut face) {
-            continue;
-        }
-        let mut p = Vector3::zeros();
-        for k in 0..face.len {
-            p += simplex[face.idx[k]].w * face.weight[k];
-        }
-        let d = p.norm_squared();
-        if d < best.0 {
-            best = (d, p, face);
-        }
+    let w = |i: usize| simplex[i].w;
+    match simplex.len() {
+        1 => (w(0), Face::of(&[(0, 1.0)])),
+        2 => segment(w(0), w(1), [0, 1]),
+        3 => triangle(w(0), w(1), w(2), [0, 1, 2]),
+        _ => tetrahedron(simplex),
     }
-    (best.1, best.2)
 }
 
 /// Vertices of a face of the simplex (indices) and barycentric weights.
@@ -164,75 +146,132 @@ struct Face {
     len: usize,
 }
 
-/// Sets the barycentric weights of the point of the face's affine hull closest to the
-/// origin; `false` unless they are all positive and the points affinely independent.
-fn affine_closest(simplex: &[Vertex], face: &mut Face) -> bool {
-    let y0 = simplex[face.idx[0]].w;
-    let k = face.len - 1;
-    if k == 0 {
-        face.weight[0] = 1.0;
-        return true;
-    }
-    // Normal equations G mu = -E^T y0, E = [y_i - y0].
-    let mut e = [Vector3::zeros(); 3];
-    for i in 0..k {
-        e[i] = simplex[face.idx[i + 1]].w - y0;
-    }
-    let mut g = [[0.0; 3]; 3];
-    let mut rhs = [0.0; 3];
-    for i in 0..k {
-        for j in 0..k {
-            g[i][j] = e[i].dot(&e[j]);
+impl Face {
+    fn of(entries: &[(usize, f64)]) -> Face {
+        let mut f = Face::default();
+        for &(i, l) in entries {
+            f.idx[f.len] = i;
+            f.weight[f.len] = l;
+            f.len += 1;
         }
-        rhs[i] = -e[i].dot(&y0);
+        f
     }
-    let Some(mu) = solve(&g, &rhs, k) else {
-        return false;
-    };
-    face.weight[0] = 1.0 - mu[..k].iter().sum::<f64>();
-    face.weight[1..=k].copy_from_slice(&mu[..k]);
-    face.weight[..=k].iter().all(|&l| l > 0.0)
 }
 
-/// Solves the `k x k` symmetric system by Cramer's rule; `None` when it is (nearly) singular
-/// relative to its entries (affinely dependent points).
-fn solve(g: &[[f64; 3]; 3], rhs: &[f64; 3], k: usize) -> Option<[f64; 3]> {
-    let scale: f64 = (0..k).map(|i| g[i][i]).fold(0.0, f64::max);
-    match k {
-        1 => (g[0][0] > 0.0).then(|| [rhs[0] / g[0][0], 0.0, 0.0]),
-        2 => {
-            let det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
-            if !(det > 1e-14 * scale * scale) {
-                return None;
-            }
-            Some([
-                (rhs[0] * g[1][1] - g[0][1] * rhs[1]) / det,
-                (g[0][0] * rhs[1] - rhs[0] * g[1][0]) / det,
-                0.0,
-            ])
-        }
-        _ => {
-            let det3 = |m: &[[f64; 3]; 3]| {
-                m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-                    - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-                    + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-            };
-            let det = det3(g);
-            if !(det > 1e-14 * scale * scale * scale) {
-                return None;
-            }
-            let mut out = [0.0; 3];
-            for (c, o) in out.iter_mut().enumerate() {
-                let mut m = *g;
-                for r in 0..3 {
-                    m[r][c] = rhs[r];
-                }
-                *o = det3(&m) / det;
-            }
-            Some(out)
-        }
+fn segment(a: Vector3<f64>, b: Vector3<f64>, id: [usize; 2]) -> (Vector3<f64>, Face) {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 { -a.dot(&ab) / len2 } else { 0.0 };
+    if t <= 0.0 {
+        (a, Face::of(&[(id[0], 1.0)]))
+    } else if t >= 1.0 {
+        (b, Face::of(&[(id[1], 1.0)]))
+    } else {
+        (a + ab * t, Face::of(&[(id[0], 1.0 - t), (id[1], t)]))
     }
 }
+
+fn triangle(
+    a: Vector3<f64>,
+    b: Vector3<f64>,
+    c: Vector3<f64>,
+    id: [usize; 3],
+) -> (Vector3<f64>, Face) {
+    let (ab, ac) = (b - a, c - a);
+    let ap = -a;
+    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (a, Face::of(&[(id[0], 1.0)]));
+    }
+    let bp = -b;
+    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return (b, Face::of(&[(id[1], 1.0)]));
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return segment(a, b, [id[0], id[1]]);
+    }
+    let cp = -c;
+    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return (c, Face::of(&[(id[2], 1.0)]));
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return segment(a, c, [id[0], id[2]]);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return segment(b, c, [id[1], id[2]]);
+    }
+    let denom = va + vb + vc;
+    if !(denom > 0.0) {
+        // Degenerate (collinear) triangle: the best of its edges.
+        return best([
+            segment(a, b, [id[0], id[1]]),
+            segment(a, c, [id[0], id[2]]),
+            segment(b, c, [id[1], id[2]]),
+        ]);
+    }
+    let (v, w) = (vb / denom, vc / denom);
+    let u = 1.0 - v - w;
+    (
+        a + ab * v + ac * w,
+        Face::of(&[(id[0], u), (id[1], v), (id[2], w)]),
+    )
+}
+
+fn best<const N: usize>(options: [(Vector3<f64>, Face); N]) -> (Vector3<f64>, Face) {
+    let mut out = options[0];
+    for o in &options[1..] {
+        if o.0.norm_squared() < out.0.norm_squared() {
+            out = *o;
+        }
+    }
+    out
+}
+
+fn tetrahedron(s: &[Vertex]) -> (Vector3<f64>, Face) {
+    let p = [s[0].w, s[1].w, s[2].w, s[3].w];
+    // Faces with the opposite vertex; the origin is outside a face when it and the opposite
+    // vertex lie on different sides of the face's plane.
+    let faces = [([0, 1, 2], 3), ([0, 1, 3], 2), ([0, 2, 3], 1), ([1, 2, 3], 0)];
+    let mut out: Option<(Vector3<f64>, Face)> = None;
+    let mut inside = true;
+    for (f, opposite) in faces {
+        let (a, b, c) = (p[f[0]], p[f[1]], p[f[2]]);
+        let n = (b - a).cross(&(c - a));
+        let side_origin = -a.dot(&n);
+        let side_opposite = (p[opposite] - a).dot(&n);
+        if side_origin * side_opposite >= 0.0 && side_opposite != 0.0 {
+            continue;
+        }
+        inside = false;
+        let cand = triangle(a, b, c, f);
+        match out {
+            Some(o) if o.0.norm_squared() <= cand.0.norm_squared() => {}
+            _ => out = Some(cand),
+        }
+    }
+    if inside {
+        // Barycentric weights of the origin: signed volumes.
+        let vol = |a: Vector3<f64>, b: Vector3<f64>, c: Vector3<f64>, d: Vector3<f64>| {
+            (b - a).dot(&(c - a).cross(&(d - a)))
+        };
+        let total = vol(p[0], p[1], p[2], p[3]);
+        let o = Vector3::zeros();
+        let l = [
+            vol(o, p[1], p[2], p[3]) / total,
+            vol(p[0], o, p[2], p[3]) / total,
+            vol(p[0], p[1], o, p[3]) / total,
+            vol(p[0], p[1], p[2], o) / total,
+        ];
+        return (Vector3::zeros(), Face::of(&[(0, l[0]), (1, l[1]), (2, l[2]), (3, l[3])]));
+    }
+    out.expect("a face is outside when the origin is not inside")
+}
+
 
 #[cfg(test)]
 mod tests {

@@ -67,17 +67,19 @@ pub fn convex_distance(
             .get(t.root as usize)
             .map_or(Point3::origin(), |n| Point3::new(0.0, 0.0, n.bound.center.y))
     };
-    let initial = center(ta) - pos_ab * center(tb);
-    let rotation = pos_ab.rotation;
+    let centers = [center(ta), pos_ab * center(tb)];
+    let initial = centers[0] - centers[1];
+    let rotation = pos_ab.rotation.to_rotation_matrix();
+    let shift = pos_ab.translation.vector;
     let r = gjk(
         |d| ca.support.support(d),
-        |d| pos_ab * cb.support.support(&(rotation.inverse_transform_vector(d))),
+        |d| rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift,
         initial,
         target_gap,
         1e-14 * scale,
     );
     if r.intersect {
-        return certified_overlap(ta, tb, pos_ab, slack, &r);
+        return certified_overlap(ta, tb, pos_ab, slack, &r, centers);
     }
     let lower = (r.lower - widen).max(0.0);
     let upper = r.upper + widen;
@@ -95,28 +97,42 @@ pub fn convex_distance(
     })
 }
 
-/// Overlap when GJK's common point of the hulls is inside both true solids with a margin
-/// above the trees' eps and the slack; `None` (decline) otherwise.
+/// Overlap when a point of both hulls is inside both true solids with a margin above the
+/// trees' eps and the slack (the containment test, [`point_in_solid`]); `None` (decline)
+/// otherwise. Candidates: GJK's common point (often on a flat face of one hull), then
+/// points moved from it towards either solid's centre on its axis (inside that solid,
+/// convexity) or their midpoint, by growing fractions, then points between the centres.
 fn certified_overlap(
     ta: &QueryTree,
     tb: &QueryTree,
     pos_ab: &Isometry3<f64>,
     slack: f64,
     r: &gjk::GjkResult,
+    centers: [Point3<f64>; 2],
 ) -> Option<ConvexAnswer> {
-    let x = Point3::from((r.point_a.coords + r.point_b.coords) * 0.5);
     let inside = |t: &QueryTree, p: &Point3<f64>| {
         let c = point_in_solid(t, p);
         c.inside && c.margin > t.eps + slack
     };
-    (inside(ta, &x) && inside(tb, &pos_ab.inverse_transform_point(&x))).then_some(ConvexAnswer {
+    let x = Point3::from((r.point_a.coords + r.point_b.coords) * 0.5);
+    let on = |p: &Point3<f64>, q: &Point3<f64>, t: f64| Point3::from(p.coords.lerp(&q.coords, t));
+    let middle = on(&centers[0], &centers[1], 0.5);
+    let steps = [1e-6, 1e-3, 0.1, 0.5];
+    let candidates = std::iter::once(x)
+        .chain(steps.into_iter().flat_map(|t| {
+            [on(&x, &centers[0], t), on(&x, &centers[1], t), on(&x, &middle, t)]
+        }))
+        .chain((1..8).map(|k| on(&centers[0], &centers[1], k as f64 / 8.0)));
+    let found = candidates
+        .into_iter()
+        .find(|p| inside(ta, p) && inside(tb, &pos_ab.inverse_transform_point(p)))?;
+    Some(ConvexAnswer {
         value: 0.0,
         lower: 0.0,
         upper: 0.0,
-        point_a: x,
-        point_b: x,
+        point_a: found,
+        point_b: found,
         overlap: true,
         iterations: r.iterations,
     })
 }
-

@@ -93,6 +93,57 @@ fn probe_convex_models() {
     }
 }
 
+#[test]
+#[ignore = "probe: why the fast path declines"]
+fn probe_declines() {
+    use super::gjk::gjk;
+    let mut rng = SplitMix64(11);
+    for i in 0..4 {
+        for j in i..4 {
+            let a = solid(CONVEX_MODELS[i], 1e-3);
+            let b = solid(CONVEX_MODELS[j], 1e-3);
+            let (ca, cb) = (a.tree.convex.as_ref().unwrap(), b.tree.convex.as_ref().unwrap());
+            let mut hist = [0usize; 8];
+            let (mut inter, mut wide) = (0, 0);
+            let mut total_iters = 0;
+            for _ in 0..500 {
+                let pose = random_pose(&mut rng, 1.2, 2.5);
+                let rot = pose.rotation;
+                let r = gjk(
+                    |d| ca.support.support(d),
+                    |d| pose * cb.support.support(&rot.inverse_transform_vector(d)),
+                    Vector3::x(),
+                    1e-3,
+                    1e-14,
+                );
+                total_iters += r.iterations;
+                hist[(r.iterations / 8).min(7)] += 1;
+                let ans = super::convex_distance(&a.tree, &b.tree, &pose, 1e-12, 2e-3);
+                if ans.is_none() {
+                    if r.intersect {
+                        inter += 1;
+                        if inter < 4 {
+                            let d = distance(&a, &b.with_pose(pose), &traversal_exact());
+                            println!("  intersect: {r:?}\n   traversal [{}, {}] overlap {}", d.lower, d.upper, d.overlap);
+                        }
+                    } else {
+                        wide += 1;
+                        if wide < 4 {
+                            println!("  wide: {r:?}");
+                        }
+                    }
+                }
+            }
+            println!(
+                "{}-{}: declined {inter} intersect, {wide} wide; mean iterations {:.1}, hist by 8s {hist:?}",
+                CONVEX_MODELS[i],
+                CONVEX_MODELS[j],
+                total_iters as f64 / 500.0
+            );
+        }
+    }
+}
+
 /// A random pose: a random rotation and a translation of length in `[lo, hi)`.
 fn random_pose(rng: &mut SplitMix64, lo: f64, hi: f64) -> Isometry3<f64> {
     let axis = nalgebra::Unit::new_normalize(rng.unit());
