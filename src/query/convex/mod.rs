@@ -60,7 +60,7 @@ pub fn convex_distance(
     let (ca, cb) = (ta.convex.as_ref()?, tb.convex.as_ref()?);
     let scale = 1.0 + pos_ab.translation.vector.norm() + ca.support.extent + cb.support.extent;
     let widen = ca.error + cb.error + slack + GJK_ROUNDING_REL * scale;
-    let allowed = requested_width.max(2.0 * widen + SETTLE_REL * scale);
+    let allowed = requested_width.max(width_floor(ta, tb, pos_ab, slack)?);
     let target_gap = allowed - 2.0 * widen;
     let center = |t: &QueryTree| {
         t.nodes
@@ -95,6 +95,16 @@ pub fn convex_distance(
         overlap: false,
         iterations: r.iterations,
     })
+}
+
+/// The narrowest interval the path aims for (module doc): twice the widening by the hulls'
+/// errors, the slack and GJK's rounding, plus [`SETTLE_REL`] of the configuration scale;
+/// `None` unless both trees are certified convex.
+pub fn width_floor(ta: &QueryTree, tb: &QueryTree, pos_ab: &Isometry3<f64>, slack: f64) -> Option<f64> {
+    let (ca, cb) = (ta.convex.as_ref()?, tb.convex.as_ref()?);
+    let scale = 1.0 + pos_ab.translation.vector.norm() + ca.support.extent + cb.support.extent;
+    let widen = ca.error + cb.error + slack + GJK_ROUNDING_REL * scale;
+    Some(2.0 * widen + SETTLE_REL * scale)
 }
 
 /// Overlap when a point of both hulls is inside both true solids with a margin above the
