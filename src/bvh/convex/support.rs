@@ -65,6 +65,9 @@ pub struct SupportTable {
     arcs: Vec<SupportArc>,
     /// Largest distance of a candidate point from the origin.
     pub extent: f64,
+    /// Lowest and highest `z` of the hull's widest points (largest `rho`): the axis segment
+    /// of a capsule's core, a cylinder's height, a ball's centre; GJK starts from it.
+    pub core: [f64; 2],
 }
 
 impl SupportTable {
@@ -131,6 +134,11 @@ impl SupportTable {
             return None;
         }
         let extent = hull.iter().map(|p| p.coords.norm()).fold(0.0, f64::max);
+        let widest = hull.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
+        let core = hull
+            .iter()
+            .filter(|p| p.x >= widest - 1e-9 * extent)
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |r, p| [r[0].min(p.y), r[1].max(p.y)]);
         let buckets = (4 * (hull.len() + arcs.len())).next_power_of_two().clamp(16, 4096);
         let mut table = SupportTable {
             vertex_offsets: vec![0],
@@ -138,6 +146,7 @@ impl SupportTable {
             vertices: Vec::new(),
             arcs: Vec::new(),
             extent,
+            core,
         };
         for j in 0..buckets {
             let t0 = 2.0 * j as f64 / buckets as f64 - 1.0;
@@ -193,7 +202,7 @@ impl SupportTable {
         }
         let (a0, a1) = (self.arc_offsets[j] as usize, self.arc_offsets[j + 1] as usize);
         if a0 < a1 {
-            let inv_norm = 1.0 / u.hypot(w);
+            let inv_norm = 1.0 / (u * u + w * w).sqrt();
             for arc in &self.arcs[a0..a1] {
                 if let Some(p) = arc.support(dir, inv_norm) {
                     let value = dir.dot(&p.coords);

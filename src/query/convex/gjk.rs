@@ -105,6 +105,7 @@ pub fn gjk(
         }
         v = closest;
         upper = v.norm();
+
         if upper <= tiny || len == 4 {
             intersect = true;
             break;

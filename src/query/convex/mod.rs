@@ -27,7 +27,8 @@ use crate::bvh::containment::point_in_solid;
 use crate::bvh::QueryTree;
 use crate::tolerances::SETTLE_REL;
 use gjk::gjk;
-use nalgebra::{Isometry3, Point3};
+use crate::bvh::convex::ConvexHullData;
+use nalgebra::{Isometry3, Point3, Vector3};
 
 /// Rounding of GJK's arithmetic (support lifts, barycentric combinations, dot products of
 /// points of the configuration's size), relative to the configuration scale: a few hundred
@@ -68,7 +69,15 @@ pub fn convex_distance(
             .map_or(Point3::origin(), |n| Point3::new(0.0, 0.0, n.bound.center.y))
     };
     let centers = [center(ta), pos_ab * center(tb)];
-    let initial = centers[0] - centers[1];
+    // GJK starts along the closest points of the two core segments on the axes (where the
+    // solids are widest): the exact direction for capsules and balls, a good one for other
+    // solids of revolution near touching.
+    let axis = |c: &ConvexHullData, pose: &Isometry3<f64>| {
+        [0, 1].map(|k| pose * Point3::new(0.0, 0.0, c.support.core[k]))
+    };
+    let initial = closest_between_segments(axis(ca, &Isometry3::identity()), axis(cb, pos_ab))
+        .filter(|v| v.norm_squared() > 0.0)
+        .unwrap_or(centers[0] - centers[1]);
     let rotation = pos_ab.rotation.to_rotation_matrix();
     let shift = pos_ab.translation.vector;
     let r = gjk(
@@ -95,6 +104,41 @@ pub fn convex_distance(
         overlap: false,
         iterations: r.iterations,
     })
+}
+
+/// `p - q` for the closest points `p` of segment `a` and `q` of segment `b`, either
+/// possibly a point (Ericson, *Real-Time Collision Detection*, 5.1.9).
+fn closest_between_segments(a: [Point3<f64>; 2], b: [Point3<f64>; 2]) -> Option<Vector3<f64>> {
+    let (d1, d2, r) = (a[1] - a[0], b[1] - b[0], a[0] - b[0]);
+    let (aa, ee, f) = (d1.norm_squared(), d2.norm_squared(), d2.dot(&r));
+    let (s, t) = if aa == 0.0 && ee == 0.0 {
+        (0.0, 0.0)
+    } else if aa == 0.0 {
+        (0.0, (f / ee).clamp(0.0, 1.0))
+    } else {
+        let c = d1.dot(&r);
+        if ee == 0.0 {
+            ((-c / aa).clamp(0.0, 1.0), 0.0)
+        } else {
+            let bb = d1.dot(&d2);
+            let denom = aa * ee - bb * bb;
+            let s = if denom > 0.0 {
+                ((bb * f - c * ee) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let t = (bb * s + f) / ee;
+            if t < 0.0 {
+                ((-c / aa).clamp(0.0, 1.0), 0.0)
+            } else if t > 1.0 {
+                (((bb - c) / aa).clamp(0.0, 1.0), 1.0)
+            } else {
+                (s, t)
+            }
+        }
+    };
+    let v = (a[0] + d1 * s) - (b[0] + d2 * t);
+    v.iter().all(|x| x.is_finite()).then_some(v)
 }
 
 /// The narrowest interval the path aims for (module doc): twice the widening by the hulls'

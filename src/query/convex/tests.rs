@@ -144,6 +144,62 @@ fn probe_declines() {
     }
 }
 
+#[test]
+#[ignore = "probe: freeform convex profiles"]
+fn probe_freeform() {
+    let mut rng = SplitMix64(99);
+    for eps in [1e-3, 1e-4, 1e-5] {
+        let (mut used, mut n, mut iters) = (0, 0, 0usize);
+        let (mut t_on, mut t_off) = (0.0, 0.0);
+        for _ in 0..20 {
+            let (Some(pa), Some(pb)) = (bezier_profile(&mut rng, false), bezier_profile(&mut rng, false)) else { continue };
+            let a = Solid::from_profile(Arc::new(pa), eps).unwrap();
+            let b = Solid::from_profile(Arc::new(pb), eps).unwrap();
+            for _ in 0..20 {
+                let bp = b.with_pose(random_pose(&mut rng, 1.0, 3.0));
+                let t0 = std::time::Instant::now();
+                let d = distance(&a, &bp, &QueryOptions::default());
+                t_on += t0.elapsed().as_secs_f64();
+                let t0 = std::time::Instant::now();
+                let _ = distance(&a, &bp, &QueryOptions { convex_path: false, ..QueryOptions::default() });
+                t_off += t0.elapsed().as_secs_f64();
+                used += d.stats.convex_paths;
+                n += 1;
+                if let Some(r) = super::convex_distance(&a.tree, &bp.tree, &a.relative_pose(&bp), 1e-11, Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps)) {
+                    iters += r.iterations;
+                }
+            }
+            if n == 20 {
+                println!("eps {eps:e}: chain {} pieces, tree eps {:e}, target {:e}", a.tree.chain.len(), a.tree.eps, a.tree.target_eps);
+            }
+        }
+        println!("eps {eps:e}: {used} of {n} by the fast path, {:.1} iterations, on {:.2} us, off {:.2} us", iters as f64 / used.max(1) as f64, t_on * 1e6 / n as f64, t_off * 1e6 / n as f64);
+    }
+}
+
+#[test]
+#[ignore = "probe: iterations at close poses"]
+fn probe_close_iterations() {
+    let mut rng = SplitMix64(5);
+    for (i, j) in [(1, 1), (0, 1), (2, 3), (3, 3)] {
+        let a = solid(CONVEX_MODELS[i], 1e-4);
+        let b = solid(CONVEX_MODELS[j], 1e-4);
+        let mut hist = std::collections::BTreeMap::new();
+        let mut total_ns = 0.0;
+        for _ in 0..100 {
+            let gap = 10f64.powf(rng.range(-4.0, -1.0));
+            let Some(pose) = near_touching(&a, &b, &mut rng, gap) else { continue };
+            let width = Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps);
+            let t0 = std::time::Instant::now();
+            let r = super::convex_distance(&a.tree, &b.tree, &pose, 1e-11, width).unwrap();
+            total_ns += t0.elapsed().as_nanos() as f64;
+            *hist.entry(r.iterations).or_insert(0) += 1;
+
+        }
+        println!("{}-{}: {:.0} ns, iterations {hist:?}", CONVEX_MODELS[i], CONVEX_MODELS[j], total_ns / 100.0);
+    }
+}
+
 /// A random pose: a random rotation and a translation of length in `[lo, hi)`.
 fn random_pose(rng: &mut SplitMix64, lo: f64, hi: f64) -> Isometry3<f64> {
     let axis = nalgebra::Unit::new_normalize(rng.unit());
