@@ -92,7 +92,12 @@ fn freeform(a: f64, h: f64, k: [f64; 4]) -> Profile {
         "freeform",
         vec![
             cubic([[0.0, 0.0], [k[0] * a, 0.0], [a, h - k[1] * h], [a, h]]),
-            cubic([[a, h], [a, h + k[2] * h], [k[3] * a, 2.0 * h], [0.0, 2.0 * h]]),
+            cubic([
+                [a, h],
+                [a, h + k[2] * h],
+                [k[3] * a, 2.0 * h],
+                [0.0, 2.0 * h],
+            ]),
         ],
     )
     .expect("convex profile")
@@ -109,8 +114,14 @@ fn main() {
         .iter()
         .map(|n| (n.to_string(), solid(model(n).expect("model"))))
         .collect();
-    named.push(("freeform_a".into(), solid(freeform(0.6, 0.7, [0.3, 0.6, 0.5, 0.4]))));
-    named.push(("freeform_b".into(), solid(freeform(0.4, 0.9, [0.8, 0.2, 0.3, 0.7]))));
+    named.push((
+        "freeform_a".into(),
+        solid(freeform(0.6, 0.7, [0.3, 0.6, 0.5, 0.4])),
+    ));
+    named.push((
+        "freeform_b".into(),
+        solid(freeform(0.4, 0.9, [0.8, 0.2, 0.3, 0.7])),
+    ));
     let mut pairs: Vec<(usize, usize)> = Vec::new();
     for i in 0..MODELS.len() {
         for j in i..MODELS.len() {
@@ -119,14 +130,20 @@ fn main() {
     }
     pairs.extend([(4, 5), (0, 4), (3, 5)]);
     println!("eps {EPS:e}, {POSES} close poses per pair, median us per query");
-    println!("{:<22} {:>9} {:>9} {:>8} {:>10}", "pair", "fast on", "fast off", "speedup", "fast used");
+    println!(
+        "{:<22} {:>9} {:>9} {:>8} {:>10}",
+        "pair", "fast on", "fast off", "speedup", "fast used"
+    );
     for (i, j) in pairs {
         let (a, b) = (&named[i].1, &named[j].1);
         let bs: Vec<Solid> = close_poses(a, b, &mut rng)
             .into_iter()
             .map(|p| b.with_pose(p))
             .collect();
-        let used: usize = bs.iter().map(|b| distance(a, b, &on).stats.convex_paths).sum();
+        let used: usize = bs
+            .iter()
+            .map(|b| distance(a, b, &on).stats.convex_paths)
+            .sum();
         let t_on = median_us(a, &bs, &on, 200);
         let t_off = median_us(a, &bs, &off, 5);
         println!(

@@ -91,7 +91,9 @@ impl Run {
 fn joint_angle(a: Vector2<f64>, b: Vector2<f64>) -> Option<f64> {
     let (a, b) = (a.normalize(), b.normalize());
     let angle = (a.x * b.y - a.y * b.x).atan2(a.dot(&b));
-    (angle >= -KINK_TOLERANCE && angle < PI - 1e-9).then_some(angle)
+    (-KINK_TOLERANCE..PI - 1e-9)
+        .contains(&angle)
+        .then_some(angle)
 }
 
 /// Certifies that the solid of revolution of `profile` is convex (module doc); `None` when
@@ -197,7 +199,10 @@ fn piece_runs(piece: &NurbsCurve, flip: f64) -> Option<Vec<Option<Option<Run>>>>
 /// A Bezier span (homogeneous control points, positive weights) as a certified run, halving
 /// it while its control polygon is not convex; `None` when the certificate fails.
 fn span_run(h: &[[f64; 3]], depth: u32) -> Option<Option<Run>> {
-    let points: Vec<Point2<f64>> = h.iter().map(|q| Point2::new(q[0] / q[2], q[1] / q[2])).collect();
+    let points: Vec<Point2<f64>> = h
+        .iter()
+        .map(|q| Point2::new(q[0] / q[2], q[1] / q[2]))
+        .collect();
     match polygon_run(&points) {
         Some(run) => Some(run),
         None if depth > 0 => {
@@ -223,11 +228,14 @@ fn polygon_run(points: &[Point2<f64>]) -> Option<Option<Run>> {
     let Some(&(f0, f1)) = legs.first() else {
         return Some(None);
     };
-    let left_of = |(a, b): (Point2<f64>, Point2<f64>), (c, d): (Point2<f64>, Point2<f64>)| match cross_sign(a, b, c, d) {
-        Ordering::Greater => true,
-        Ordering::Equal => dot_sign(a, b, c, d) == Ordering::Greater,
-        Ordering::Less => false,
-    };
+    let left_of =
+        |(a, b): (Point2<f64>, Point2<f64>), (c, d): (Point2<f64>, Point2<f64>)| match cross_sign(
+            a, b, c, d,
+        ) {
+            Ordering::Greater => true,
+            Ordering::Equal => dot_sign(a, b, c, d) == Ordering::Greater,
+            Ordering::Less => false,
+        };
     let mut turning = 0.0;
     let mut length = 0.0;
     for (i, &leg) in legs.iter().enumerate() {
@@ -266,8 +274,9 @@ fn halve(h: &[[f64; 3]]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
     right.push(work[n - 1]);
     for r in 1..n {
         for i in 0..n - r {
-            for c in 0..3 {
-                work[i][c] = 0.5 * (work[i][c] + work[i + 1][c]);
+            let next = work[i + 1];
+            for (x, y) in work[i].iter_mut().zip(next) {
+                *x = 0.5 * (*x + y);
             }
         }
         left.push(work[0]);

@@ -48,9 +48,9 @@ pub fn sign_of_products(terms: &[(f64, f64)]) -> Ordering {
         grow_expansion(&mut expansion, p);
     }
     // The largest component decides the sign of a non-overlapping expansion.
-    expansion
-        .last()
-        .map_or(Ordering::Equal, |x| x.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
+    expansion.last().map_or(Ordering::Equal, |x| {
+        x.partial_cmp(&0.0).unwrap_or(Ordering::Equal)
+    })
 }
 
 /// Exact sign of `cross(b - a, d - c)`.
@@ -96,7 +96,12 @@ mod tests {
         assert_eq!(dot_sign(a, b, b, c), Ordering::Greater);
         let p = Point2::new(1e-17, 0.0);
         assert_eq!(
-            cross_sign(Point2::origin(), Point2::new(1.0, 0.0), Point2::origin(), p + nalgebra::Vector2::new(1.0, 1e-30)),
+            cross_sign(
+                Point2::origin(),
+                Point2::new(1.0, 0.0),
+                Point2::origin(),
+                p + nalgebra::Vector2::new(1.0, 1e-30)
+            ),
             Ordering::Greater
         );
         // 0.1 + 0.2 != 0.3: (0,0), (0.1, 0.1), (0.3, 0.3) collinear exactly? 0.1*0.3 vs 0.3*0.1.

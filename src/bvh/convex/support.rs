@@ -138,8 +138,12 @@ impl SupportTable {
         let core = hull
             .iter()
             .filter(|p| p.x >= widest - 1e-9 * extent)
-            .fold([f64::INFINITY, f64::NEG_INFINITY], |r, p| [r[0].min(p.y), r[1].max(p.y)]);
-        let buckets = (4 * (hull.len() + arcs.len())).next_power_of_two().clamp(16, 4096);
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |r, p| {
+                [r[0].min(p.y), r[1].max(p.y)]
+            });
+        let buckets = (4 * (hull.len() + arcs.len()))
+            .next_power_of_two()
+            .clamp(16, 4096);
         let mut table = SupportTable {
             vertex_offsets: vec![0],
             arc_offsets: vec![0],
@@ -190,7 +194,10 @@ impl SupportTable {
         let t = w / (u + w.abs());
         let j = (((t + 1.0) * 0.5 * k as f64) as usize).min(k - 1);
         let dir = Vector2::new(u, w);
-        let (v0, v1) = (self.vertex_offsets[j] as usize, self.vertex_offsets[j + 1] as usize);
+        let (v0, v1) = (
+            self.vertex_offsets[j] as usize,
+            self.vertex_offsets[j + 1] as usize,
+        );
         let mut best = self.vertices[v0];
         let mut best_value = dir.dot(&best.coords);
         for p in &self.vertices[v0 + 1..v1] {
@@ -200,7 +207,10 @@ impl SupportTable {
                 best_value = value;
             }
         }
-        let (a0, a1) = (self.arc_offsets[j] as usize, self.arc_offsets[j + 1] as usize);
+        let (a0, a1) = (
+            self.arc_offsets[j] as usize,
+            self.arc_offsets[j + 1] as usize,
+        );
         if a0 < a1 {
             let inv_norm = 1.0 / (u * u + w * w).sqrt();
             for arc in &self.arcs[a0..a1] {
@@ -267,7 +277,9 @@ fn convex_hull(mut points: Vec<Point2<f64>>) -> Vec<Point2<f64>> {
             Box::new(points.iter().rev())
         };
         for &p in iter {
-            while hull.len() >= start + 2 && turn(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+            while hull.len() >= start + 2
+                && turn(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
                 hull.pop();
             }
             hull.push(p);
@@ -320,7 +332,10 @@ mod tests {
             let p = table.support_2d(dir.x, dir.y);
             let exact = brute(&chain, dir);
             let got = dir.dot(&p.coords);
-            assert!(got <= exact + 1e-12 && got >= exact - 1e-8, "phi {phi}: {got} vs {exact}");
+            assert!(
+                got <= exact + 1e-12 && got >= exact - 1e-8,
+                "phi {phi}: {got} vs {exact}"
+            );
         }
     }
 }

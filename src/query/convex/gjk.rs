@@ -207,7 +207,7 @@ fn triangle(
         return segment(b, c, [id[1], id[2]]);
     }
     let denom = va + vb + vc;
-    if !(denom > 0.0) {
+    if denom.is_nan() || denom <= 0.0 {
         // Degenerate (collinear) triangle: the best of its edges.
         return best([
             segment(a, b, [id[0], id[1]]),
@@ -237,7 +237,12 @@ fn tetrahedron(s: &[Vertex]) -> (Vector3<f64>, Face) {
     let p = [s[0].w, s[1].w, s[2].w, s[3].w];
     // Faces with the opposite vertex; the origin is outside a face when it and the opposite
     // vertex lie on different sides of the face's plane.
-    let faces = [([0, 1, 2], 3), ([0, 1, 3], 2), ([0, 2, 3], 1), ([1, 2, 3], 0)];
+    let faces = [
+        ([0, 1, 2], 3),
+        ([0, 1, 3], 2),
+        ([0, 2, 3], 1),
+        ([1, 2, 3], 0),
+    ];
     let mut out: Option<(Vector3<f64>, Face)> = None;
     let mut inside = true;
     for (f, opposite) in faces {
@@ -268,11 +273,13 @@ fn tetrahedron(s: &[Vertex]) -> (Vector3<f64>, Face) {
             vol(p[0], p[1], o, p[3]) / total,
             vol(p[0], p[1], p[2], o) / total,
         ];
-        return (Vector3::zeros(), Face::of(&[(0, l[0]), (1, l[1]), (2, l[2]), (3, l[3])]));
+        return (
+            Vector3::zeros(),
+            Face::of(&[(0, l[0]), (1, l[1]), (2, l[2]), (3, l[3])]),
+        );
     }
     out.expect("a face is outside when the origin is not inside")
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -296,7 +303,10 @@ mod tests {
             1e-14,
         );
         let exact = Vector3::new(3.0, 1.0, -0.5).norm() - 1.5;
-        assert!(r.lower <= exact + 1e-12 && exact <= r.upper + 1e-12, "{r:?} {exact}");
+        assert!(
+            r.lower <= exact + 1e-12 && exact <= r.upper + 1e-12,
+            "{r:?} {exact}"
+        );
         assert!(r.upper - r.lower <= 1e-9, "{r:?}");
         let r = gjk(
             cube(Vector3::zeros(), 1.0),
@@ -305,7 +315,10 @@ mod tests {
             0.0,
             1e-14,
         );
-        assert!((r.lower - 0.5).abs() < 1e-12 && (r.upper - 0.5).abs() < 1e-12, "{r:?}");
+        assert!(
+            (r.lower - 0.5).abs() < 1e-12 && (r.upper - 0.5).abs() < 1e-12,
+            "{r:?}"
+        );
         let r = gjk(
             cube(Vector3::zeros(), 1.0),
             ball(Vector3::new(0.5, 0.3, 0.2), 1.0),

@@ -24,10 +24,10 @@ pub mod gjk;
 mod tests;
 
 use crate::bvh::containment::point_in_solid;
+use crate::bvh::convex::ConvexHullData;
 use crate::bvh::QueryTree;
 use crate::tolerances::SETTLE_REL;
 use gjk::gjk;
-use crate::bvh::convex::ConvexHullData;
 use nalgebra::{Isometry3, Point3, Vector3};
 
 /// Rounding of GJK's arithmetic (support lifts, barycentric combinations, dot products of
@@ -64,9 +64,9 @@ pub fn convex_distance(
     let allowed = requested_width.max(width_floor(ta, tb, pos_ab, slack)?);
     let target_gap = allowed - 2.0 * widen;
     let center = |t: &QueryTree| {
-        t.nodes
-            .get(t.root as usize)
-            .map_or(Point3::origin(), |n| Point3::new(0.0, 0.0, n.bound.center.y))
+        t.nodes.get(t.root as usize).map_or(Point3::origin(), |n| {
+            Point3::new(0.0, 0.0, n.bound.center.y)
+        })
     };
     let centers = [center(ta), pos_ab * center(tb)];
     // GJK starts along the closest points of the two core segments on the axes (where the
@@ -92,7 +92,7 @@ pub fn convex_distance(
     }
     let lower = (r.lower - widen).max(0.0);
     let upper = r.upper + widen;
-    if !(upper - lower <= allowed) {
+    if (upper - lower).is_nan() || upper - lower > allowed {
         return None;
     }
     Some(ConvexAnswer {
@@ -144,7 +144,12 @@ fn closest_between_segments(a: [Point3<f64>; 2], b: [Point3<f64>; 2]) -> Option<
 /// The narrowest interval the path aims for (module doc): twice the widening by the hulls'
 /// errors, the slack and GJK's rounding, plus [`SETTLE_REL`] of the configuration scale;
 /// `None` unless both trees are certified convex.
-pub fn width_floor(ta: &QueryTree, tb: &QueryTree, pos_ab: &Isometry3<f64>, slack: f64) -> Option<f64> {
+pub fn width_floor(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+) -> Option<f64> {
     let (ca, cb) = (ta.convex.as_ref()?, tb.convex.as_ref()?);
     let scale = 1.0 + pos_ab.translation.vector.norm() + ca.support.extent + cb.support.extent;
     let widen = ca.error + cb.error + slack + GJK_ROUNDING_REL * scale;
@@ -174,7 +179,11 @@ fn certified_overlap(
     let steps = [1e-6, 1e-3, 0.1, 0.5];
     let candidates = std::iter::once(x)
         .chain(steps.into_iter().flat_map(|t| {
-            [on(&x, &centers[0], t), on(&x, &centers[1], t), on(&x, &middle, t)]
+            [
+                on(&x, &centers[0], t),
+                on(&x, &centers[1], t),
+                on(&x, &middle, t),
+            ]
         }))
         .chain((1..8).map(|k| on(&centers[0], &centers[1], k as f64 / 8.0)));
     let found = candidates

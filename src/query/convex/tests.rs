@@ -69,10 +69,10 @@ fn probe_convex_models() {
         }
     }
     let mut rng = SplitMix64(7);
-    for i in 0..4 {
-        for j in i..4 {
-            let a = solid(CONVEX_MODELS[i], 1e-3);
-            let b = solid(CONVEX_MODELS[j], 1e-3);
+    for (i, name_a) in CONVEX_MODELS.iter().enumerate() {
+        for name_b in &CONVEX_MODELS[i..] {
+            let a = solid(name_a, 1e-3);
+            let b = solid(name_b, 1e-3);
             let mut iters = 0;
             let mut n = 0;
             let t0 = std::time::Instant::now();
@@ -83,9 +83,7 @@ fn probe_convex_models() {
                 iters += 1;
             }
             println!(
-                "{}-{}: {} of {iters} by the fast path, {:.2} us per query",
-                CONVEX_MODELS[i],
-                CONVEX_MODELS[j],
+                "{name_a}-{name_b}: {} of {iters} by the fast path, {:.2} us per query",
                 n,
                 t0.elapsed().as_secs_f64() * 1e6 / iters as f64
             );
@@ -98,11 +96,14 @@ fn probe_convex_models() {
 fn probe_declines() {
     use super::gjk::gjk;
     let mut rng = SplitMix64(11);
-    for i in 0..4 {
-        for j in i..4 {
-            let a = solid(CONVEX_MODELS[i], 1e-3);
-            let b = solid(CONVEX_MODELS[j], 1e-3);
-            let (ca, cb) = (a.tree.convex.as_ref().unwrap(), b.tree.convex.as_ref().unwrap());
+    for (i, name_a) in CONVEX_MODELS.iter().enumerate() {
+        for name_b in &CONVEX_MODELS[i..] {
+            let a = solid(name_a, 1e-3);
+            let b = solid(name_b, 1e-3);
+            let (ca, cb) = (
+                a.tree.convex.as_ref().unwrap(),
+                b.tree.convex.as_ref().unwrap(),
+            );
             let mut hist = [0usize; 8];
             let (mut inter, mut wide) = (0, 0);
             let mut total_iters = 0;
@@ -124,7 +125,10 @@ fn probe_declines() {
                         inter += 1;
                         if inter < 4 {
                             let d = distance(&a, &b.with_pose(pose), &traversal_exact());
-                            println!("  intersect: {r:?}\n   traversal [{}, {}] overlap {}", d.lower, d.upper, d.overlap);
+                            println!(
+                                "  intersect: {r:?}\n   traversal [{}, {}] overlap {}",
+                                d.lower, d.upper, d.overlap
+                            );
                         }
                     } else {
                         wide += 1;
@@ -135,9 +139,7 @@ fn probe_declines() {
                 }
             }
             println!(
-                "{}-{}: declined {inter} intersect, {wide} wide; mean iterations {:.1}, hist by 8s {hist:?}",
-                CONVEX_MODELS[i],
-                CONVEX_MODELS[j],
+                "{name_a}-{name_b}: declined {inter} intersect, {wide} wide; mean iterations {:.1}, hist by 8s {hist:?}",
                 total_iters as f64 / 500.0
             );
         }
@@ -152,7 +154,12 @@ fn probe_freeform() {
         let (mut used, mut n, mut iters) = (0, 0, 0usize);
         let (mut t_on, mut t_off) = (0.0, 0.0);
         for _ in 0..20 {
-            let (Some(pa), Some(pb)) = (bezier_profile(&mut rng, false), bezier_profile(&mut rng, false)) else { continue };
+            let (Some(pa), Some(pb)) = (
+                bezier_profile(&mut rng, false),
+                bezier_profile(&mut rng, false),
+            ) else {
+                continue;
+            };
             let a = Solid::from_profile(Arc::new(pa), eps).unwrap();
             let b = Solid::from_profile(Arc::new(pb), eps).unwrap();
             for _ in 0..20 {
@@ -161,16 +168,34 @@ fn probe_freeform() {
                 let d = distance(&a, &bp, &QueryOptions::default());
                 t_on += t0.elapsed().as_secs_f64();
                 let t0 = std::time::Instant::now();
-                let _ = distance(&a, &bp, &QueryOptions { convex_path: false, ..QueryOptions::default() });
+                let _ = distance(
+                    &a,
+                    &bp,
+                    &QueryOptions {
+                        convex_path: false,
+                        ..QueryOptions::default()
+                    },
+                );
                 t_off += t0.elapsed().as_secs_f64();
                 used += d.stats.convex_paths;
                 n += 1;
-                if let Some(r) = super::convex_distance(&a.tree, &bp.tree, &a.relative_pose(&bp), 1e-11, Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps)) {
+                if let Some(r) = super::convex_distance(
+                    &a.tree,
+                    &bp.tree,
+                    &a.relative_pose(&bp),
+                    1e-11,
+                    Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps),
+                ) {
                     iters += r.iterations;
                 }
             }
             if n == 20 {
-                println!("eps {eps:e}: chain {} pieces, tree eps {:e}, target {:e}", a.tree.chain.len(), a.tree.eps, a.tree.target_eps);
+                println!(
+                    "eps {eps:e}: chain {} pieces, tree eps {:e}, target {:e}",
+                    a.tree.chain.len(),
+                    a.tree.eps,
+                    a.tree.target_eps
+                );
             }
         }
         println!("eps {eps:e}: {used} of {n} by the fast path, {:.1} iterations, on {:.2} us, off {:.2} us", iters as f64 / used.max(1) as f64, t_on * 1e6 / n as f64, t_off * 1e6 / n as f64);
@@ -188,15 +213,21 @@ fn probe_close_iterations() {
         let mut total_ns = 0.0;
         for _ in 0..100 {
             let gap = 10f64.powf(rng.range(-4.0, -1.0));
-            let Some(pose) = near_touching(&a, &b, &mut rng, gap) else { continue };
+            let Some(pose) = near_touching(&a, &b, &mut rng, gap) else {
+                continue;
+            };
             let width = Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps);
             let t0 = std::time::Instant::now();
             let r = super::convex_distance(&a.tree, &b.tree, &pose, 1e-11, width).unwrap();
             total_ns += t0.elapsed().as_nanos() as f64;
             *hist.entry(r.iterations).or_insert(0) += 1;
-
         }
-        println!("{}-{}: {:.0} ns, iterations {hist:?}", CONVEX_MODELS[i], CONVEX_MODELS[j], total_ns / 100.0);
+        println!(
+            "{}-{}: {:.0} ns, iterations {hist:?}",
+            CONVEX_MODELS[i],
+            CONVEX_MODELS[j],
+            total_ns / 100.0
+        );
     }
 }
 
@@ -207,7 +238,6 @@ fn random_pose(rng: &mut SplitMix64, lo: f64, hi: f64) -> Isometry3<f64> {
     let t = rng.unit() * rng.range(lo, hi);
     Isometry3::from_parts(Translation3::from(t), rot)
 }
-
 
 // ---------------------------------------------------------------------------------------
 // Convexity of random profiles against an independent sampled check.
@@ -263,11 +293,19 @@ fn sampled_convexity(p: &Profile) -> Option<bool> {
 /// to its top; `dent` pulls one middle vertex towards the centre.
 fn polygon_profile(rng: &mut SplitMix64, dent: bool) -> Option<Profile> {
     let n = 2 + (rng.next_f64() * 8.0) as usize;
-    let (a, b, z0) = (rng.range(0.2, 1.5), rng.range(0.2, 1.5), rng.range(-1.0, 1.0));
+    let (a, b, z0) = (
+        rng.range(0.2, 1.5),
+        rng.range(0.2, 1.5),
+        rng.range(-1.0, 1.0),
+    );
     let mut angles: Vec<f64> = (0..n).map(|_| rng.range(-1.5, 1.5)).collect();
     angles.sort_by(f64::total_cmp);
     let mut pts = vec![Point2::new(0.0, z0 - b)];
-    pts.extend(angles.iter().map(|t| Point2::new(a * t.cos(), z0 + b * t.sin())));
+    pts.extend(
+        angles
+            .iter()
+            .map(|t| Point2::new(a * t.cos(), z0 + b * t.sin())),
+    );
     pts.push(Point2::new(0.0, z0 + b));
     if dent {
         let i = 1 + (rng.next_f64() * n as f64) as usize;
@@ -288,17 +326,33 @@ fn polygon_profile(rng: &mut SplitMix64, dent: bool) -> Option<Profile> {
 fn bezier_profile(rng: &mut SplitMix64, dent: bool) -> Option<Profile> {
     let (a, h) = (rng.range(0.2, 1.2), rng.range(0.2, 1.2));
     let k = [0.0; 4].map(|_| rng.range(0.05, 0.95));
-    let mut pieces = vec![cubic([[0.0, 0.0], [k[0] * a, 0.0], [a, h - k[1] * h], [a, h]])];
+    let mut pieces = vec![cubic([
+        [0.0, 0.0],
+        [k[0] * a, 0.0],
+        [a, h - k[1] * h],
+        [a, h],
+    ])];
     let top = h + if dent { rng.range(0.2, 1.0) } else { 0.0 };
     if dent {
         let pull = rng.range(0.2, 0.9) * a;
         let mid = 0.5 * (h + top);
         pieces.push(
-            bezier(&[[a, h], [a, h + 0.1 * (top - h)], [pull, mid], [a, top - 0.1 * (top - h)], [a, top]])
-                .unwrap(),
+            bezier(&[
+                [a, h],
+                [a, h + 0.1 * (top - h)],
+                [pull, mid],
+                [a, top - 0.1 * (top - h)],
+                [a, top],
+            ])
+            .unwrap(),
         );
     }
-    pieces.push(cubic([[a, top], [a, top + k[2] * h], [k[3] * a, top + h], [0.0, top + h]]));
+    pieces.push(cubic([
+        [a, top],
+        [a, top + k[2] * h],
+        [k[3] * a, top + h],
+        [0.0, top + h],
+    ]));
     Profile::new("bezier", pieces).ok()
 }
 
@@ -323,7 +377,10 @@ fn convexity_of_random_profiles_agrees_with_sampling() {
             Some(false) => {
                 dented += 1;
                 // The promise: a non-convex solid is never certified.
-                assert!(certificate.is_none(), "round {round}: non-convex profile certified");
+                assert!(
+                    certificate.is_none(),
+                    "round {round}: non-convex profile certified"
+                );
                 rejected_dents += 1;
             }
             Some(true) => {
@@ -331,14 +388,22 @@ fn convexity_of_random_profiles_agrees_with_sampling() {
                 if certificate.is_some() {
                     certified_convex += 1;
                 } else {
-                    assert!(dent, "round {round}: a convex profile of the convex families rejected");
+                    assert!(
+                        dent,
+                        "round {round}: a convex profile of the convex families rejected"
+                    );
                 }
             }
             None => {}
         }
     }
-    println!("{convex} convex ({certified_convex} certified), {dented} not ({rejected_dents} rejected)");
-    assert!(convex > 250 && dented > 150, "{convex} convex, {dented} dented");
+    println!(
+        "{convex} convex ({certified_convex} certified), {dented} not ({rejected_dents} rejected)"
+    );
+    assert!(
+        convex > 250 && dented > 150,
+        "{convex} convex, {dented} dented"
+    );
 }
 
 #[test]
@@ -404,10 +469,16 @@ fn assert_meets(fast: &crate::query::Distance, reference: &crate::query::Distanc
         reference.upper
     );
     if fast.overlap {
-        assert_eq!(reference.lower, 0.0, "{label}: overlap claimed, traversal separates");
+        assert_eq!(
+            reference.lower, 0.0,
+            "{label}: overlap claimed, traversal separates"
+        );
     }
     if reference.overlap {
-        assert_eq!(fast.lower, 0.0, "{label}: traversal overlaps, fast path separates");
+        assert_eq!(
+            fast.lower, 0.0,
+            "{label}: traversal overlaps, fast path separates"
+        );
     }
 }
 
@@ -439,7 +510,9 @@ fn fast_path_contains_the_traversals_distance() {
                 let fast = distance(a, &bp, &fast_opts);
                 let reference = distance(a, &bp, &traversal_exact());
                 assert_meets(&fast, &reference, &label);
-                let requested = fast_opts.tolerance.width(a.tree.target_eps, bp.tree.target_eps);
+                let requested = fast_opts
+                    .tolerance
+                    .width(a.tree.target_eps, bp.tree.target_eps);
                 assert!(fast.upper - fast.lower <= requested, "{label}: width");
                 poses += 1;
                 by_fast_path += fast.stats.convex_paths;
@@ -447,14 +520,20 @@ fn fast_path_contains_the_traversals_distance() {
                 if fast.stats.convex_paths == 1 && !fast.overlap {
                     // Witnesses are realised: their distance lies in the interval.
                     let w = (fast.point_a - fast.point_b).norm();
-                    assert!(w >= fast.lower - 1e-12 && w <= fast.upper + 1e-12, "{label}: witness {w}");
+                    assert!(
+                        w >= fast.lower - 1e-12 && w <= fast.upper + 1e-12,
+                        "{label}: witness {w}"
+                    );
                 }
             }
         }
     }
     println!("{poses} poses, {by_fast_path} by the fast path, {overlaps} overlapping");
     assert!(poses >= 2000);
-    assert!(by_fast_path as f64 >= 0.97 * poses as f64, "{by_fast_path} of {poses}");
+    assert!(
+        by_fast_path as f64 >= 0.97 * poses as f64,
+        "{by_fast_path} of {poses}"
+    );
 }
 
 #[test]
@@ -480,7 +559,10 @@ fn fast_path_contains_analytic_distances() {
             let c = pose.inverse_transform_point(&centre(&Isometry3::identity()));
             let out_r = (c.x.hypot(c.y) - 0.5).max(0.0);
             let out_z = (-c.z).max(c.z - 1.5).max(0.0);
-            (cylinder.with_pose(pose), (out_r.hypot(out_z) - 0.75).max(0.0))
+            (
+                cylinder.with_pose(pose),
+                (out_r.hypot(out_z) - 0.75).max(0.0),
+            )
         };
         let d = distance(&sphere_a, &b, &opts);
         fast += d.stats.convex_paths;
@@ -507,7 +589,11 @@ fn fast_path_contains_analytic_distances() {
 fn width_meets_the_tolerance() {
     let mut rng = SplitMix64(0x3D);
     let solids: Vec<Solid> = CONVEX_MODELS.iter().map(|n| solid(n, 1e-3)).collect();
-    for tolerance in [Tolerance::Trees, Tolerance::Absolute(1e-6), Tolerance::Absolute(0.0)] {
+    for tolerance in [
+        Tolerance::Trees,
+        Tolerance::Absolute(1e-6),
+        Tolerance::Absolute(0.0),
+    ] {
         let opts = QueryOptions {
             tolerance,
             ..QueryOptions::default()
