@@ -6,6 +6,7 @@
 //! solids the relative pose `pos_ab = pose_a^-1 * pose_b` places B in A's frame.
 
 use crate::biarc::{BiarcTree, TreeError};
+use crate::bvh::convex::ConvexHullData;
 use crate::bvh::QueryTree;
 use crate::profile::Profile;
 use nalgebra::{Isometry3, Point3};
@@ -32,10 +33,12 @@ impl Solid {
         }
     }
 
-    /// A solid from an exact profile: builds the biarc tree with bound `eps` (paper 4.1).
+    /// A solid from an exact profile: builds the biarc tree with bound `eps` (paper 4.1),
+    /// and certifies convexity for the convex fast path.
     pub fn from_profile(profile: Arc<Profile>, eps: f64) -> Result<Solid, TreeError> {
         let bt = BiarcTree::build(&profile, eps)?;
-        let tree = QueryTree::from_biarc_tree(&bt, profile.kind());
+        let mut tree = QueryTree::from_biarc_tree(&bt, profile.kind());
+        tree.convex = ConvexHullData::certify(&profile, &tree);
         Ok(Solid::new(Arc::new(tree), Some(profile)))
     }
 

@@ -15,6 +15,7 @@
 //! Data flows one way: profile -> biarc -> bvh -> solid -> query.
 
 pub mod containment;
+pub mod convex;
 pub mod hull;
 pub mod offset_solid;
 pub mod patch;

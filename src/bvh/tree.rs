@@ -4,6 +4,7 @@
 //! the original curve piece under it and its approximation. Revolved, the disk is a solid
 //! torus containing the corresponding part of the solid's boundary (see [`crate::query::bound::node_pair`]).
 
+use super::convex::ConvexHullData;
 use super::hull::{HullRef, NodeHull, UpperHull};
 use super::offset_solid::{detect, OffsetSolid};
 use super::patch::{cross2, Patch, ProfileArc};
@@ -85,6 +86,10 @@ pub struct QueryTree {
     /// The solid is a ball or a solid torus (the chain is one circle): queries between two
     /// such solids take the closed form of [`crate::query::kernel::ball_torus`] instead of a traversal.
     pub offset: Option<OffsetSolid>,
+    /// The solid is certified convex (set by [`crate::solid::Solid::from_profile`], which
+    /// has the exact profile): queries between two such solids take the convex fast path
+    /// ([`crate::query::convex`]).
+    pub convex: Option<ConvexHullData>,
     /// Per node below the upper level, a hull of parallels that contains its original curve
     /// piece's surface up to its `grow` (the node's own biarc chords, grown by their
     /// sagittas and the biarc's bound; paper 4.1's fat biarcs), for the node-pair hull bound
@@ -125,6 +130,7 @@ impl QueryTree {
             target_eps: 0.0,
             node_ends: Vec::new(),
             offset: None,
+            convex: None,
             hulls: Vec::new(),
             upper_hulls: Vec::new(),
             upper_start: u32::MAX,
@@ -195,6 +201,7 @@ impl QueryTree {
             target_eps: 0.0,
             node_ends: Vec::new(),
             offset: None,
+            convex: None,
             hulls: Vec::new(),
             upper_hulls: Vec::new(),
             upper_start: u32::MAX,

@@ -23,6 +23,7 @@
 
 pub mod angles;
 pub mod bound;
+pub mod convex;
 pub mod kernel;
 pub mod leaf;
 pub mod traverse;

@@ -15,6 +15,7 @@ use super::refine::refine_on_profiles;
 use super::search::{traverse, Budget, TraversalOptions, TraversalStats};
 use crate::bvh::QueryTree;
 use crate::query::bound::node_pair::BoundKind;
+use crate::query::convex::{convex_distance, ConvexAnswer};
 use crate::query::kernel::ball_torus::{offset_distance, OffsetDistance};
 use crate::solid::Solid;
 pub use crate::tolerances::{POSE_SLACK_REL, SIZE_SLACK_REL};
@@ -59,6 +60,9 @@ pub struct QueryOptions {
     /// Answer pairs of balls and solid tori in closed form ([`crate::query::kernel::ball_torus`]); `false`
     /// runs the traversal for them too (to measure it, or to compare the two).
     pub closed_form: bool,
+    /// Answer pairs of solids certified convex by GJK ([`crate::query::convex`]) when no
+    /// refinement is asked for; `false` runs the traversal for them too.
+    pub convex_path: bool,
 }
 
 impl Default for QueryOptions {
@@ -69,6 +73,7 @@ impl Default for QueryOptions {
             bound: BoundKind::default(),
             refine: false,
             closed_form: true,
+            convex_path: true,
         }
     }
 }
@@ -205,6 +210,12 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     if let (true, Some(oa), Some(ob)) = (opts.closed_form, &a.tree.offset, &b.tree.offset) {
         return offset_result(a, &offset_distance(oa, ob, &pos_ab, slack));
     }
+    if opts.convex_path && !opts.refine {
+        let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);
+        if let Some(r) = convex_distance(&a.tree, &b.tree, &pos_ab, slack, width) {
+            return convex_result(a, &r);
+        }
+    }
     // The answer is widened by the rounding slack on both sides: the traversal stops that
     // much narrower, so that `upper - lower` keeps within the requested width.
     let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);
@@ -307,6 +318,23 @@ fn offset_result(a: &Solid, r: &OffsetDistance) -> Distance {
         point_a: a.pose * r.point_a,
         point_b: a.pose * r.point_b,
         overlap: false,
+        stats,
+    }
+}
+
+/// The convex fast path's answer ([`crate::query::convex`]) in the world frame.
+fn convex_result(a: &Solid, r: &ConvexAnswer) -> Distance {
+    let stats = TraversalStats {
+        convex_paths: 1,
+        ..TraversalStats::default()
+    };
+    Distance {
+        value: r.value,
+        lower: r.lower,
+        upper: r.upper,
+        point_a: a.pose * r.point_a,
+        point_b: a.pose * r.point_b,
+        overlap: r.overlap,
         stats,
     }
 }

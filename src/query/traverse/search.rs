@@ -64,6 +64,9 @@ pub struct TraversalStats {
     /// Queries answered by the closed form for balls and solid tori ([`crate::query::kernel::ball_torus`]),
     /// without a traversal.
     pub closed_forms: usize,
+    /// Queries answered by the convex fast path ([`crate::query::convex`]), without a
+    /// traversal.
+    pub convex_paths: usize,
     /// Patch pairs whose kernel needed a sampled scan, bounded below by subdivision
     /// ([`crate::query::leaf::subdivision`]).
     pub subdivided_pairs: usize,
@@ -84,6 +87,7 @@ impl TraversalStats {
         self.bound_tests += o.bound_tests;
         self.max_queue = self.max_queue.max(o.max_queue);
         self.closed_forms += o.closed_forms;
+        self.convex_paths += o.convex_paths;
         self.subdivided_pairs += o.subdivided_pairs;
         self.budget_exhausted |= o.budget_exhausted;
     }

@@ -1,0 +1,201 @@
+//! The convex fast path: the distance between two solids of revolution certified convex
+//! ([`crate::bvh::convex`]) by GJK on the supports of their approximations' hulls
+//! ([`gjk`]), instead of a traversal.
+//!
+//! **Certified interval.** Let `H_A`, `H_B` be the hulls of the approximating surfaces and
+//! `h_A`, `h_B` their two-sided Hausdorff bounds to the true solids
+//! ([`crate::bvh::convex::ConvexHullData::error`]: the tree's eps, the certificate's dent, the hull's rounding).
+//! The distance between convex solids is that between the sets (0 when they meet), and it
+//! moves by at most `h_A + h_B` from `H_A, H_B` to the true solids. So with GJK's bounds
+//! `[l, u]` on `d(H_A, H_B)` the answer is `[max(0, l - w), u + w]`, `w = h_A + h_B` plus the
+//! query's rounding slack and [`GJK_ROUNDING_REL`]; the witnesses are GJK's points, on the
+//! hulls (within `h` of the true surfaces). Overlap is reported only with a point of both
+//! hulls that the tree's containment test puts inside both true solids with a margin above
+//! eps and slack ([`crate::bvh::containment`]).
+//!
+//! **Width.** GJK runs until `u - l` fits the requested width less `2 w`, or the narrowest
+//! interval a traversal at tolerance 0 reaches, `2 w` plus [`SETTLE_REL`] of the scale,
+//! whichever is wider (the trees' eps limit a traversal the same way). When it cannot get
+//! there, or when the hulls meet without a certified common point, the path declines and the
+//! query traverses.
+
+pub mod gjk;
+#[cfg(test)]
+mod tests;
+
+use crate::bvh::containment::point_in_solid;
+use crate::bvh::convex::ConvexHullData;
+use crate::bvh::QueryTree;
+use crate::tolerances::SETTLE_REL;
+use gjk::gjk;
+use nalgebra::{Isometry3, Point3, Vector3};
+
+/// Rounding of GJK's arithmetic (support lifts, barycentric combinations, dot products of
+/// points of the configuration's size), relative to the configuration scale: a few hundred
+/// ulps, with margin.
+pub const GJK_ROUNDING_REL: f64 = 1e-13;
+
+/// The fast path's answer, in A's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConvexAnswer {
+    pub value: f64,
+    pub lower: f64,
+    pub upper: f64,
+    pub point_a: Point3<f64>,
+    pub point_b: Point3<f64>,
+    /// The solids certainly overlap (`point_a = point_b` is inside both).
+    pub overlap: bool,
+    pub iterations: usize,
+}
+
+/// The distance between the convex solids of trees `ta` (at the identity) and `tb` (at
+/// `pos_ab`), with interval width at most `requested_width` or the traversal's floor (module
+/// doc); `None` when the path declines.
+pub fn convex_distance(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+    requested_width: f64,
+) -> Option<ConvexAnswer> {
+    let (ca, cb) = (ta.convex.as_ref()?, tb.convex.as_ref()?);
+    let scale = 1.0 + pos_ab.translation.vector.norm() + ca.support.extent + cb.support.extent;
+    let widen = ca.error + cb.error + slack + GJK_ROUNDING_REL * scale;
+    let allowed = requested_width.max(width_floor(ta, tb, pos_ab, slack)?);
+    let target_gap = allowed - 2.0 * widen;
+    let center = |t: &QueryTree| {
+        t.nodes.get(t.root as usize).map_or(Point3::origin(), |n| {
+            Point3::new(0.0, 0.0, n.bound.center.y)
+        })
+    };
+    let centers = [center(ta), pos_ab * center(tb)];
+    // GJK starts along the closest points of the two core segments on the axes (where the
+    // solids are widest): the exact direction for capsules and balls, a good one for other
+    // solids of revolution near touching.
+    let axis = |c: &ConvexHullData, pose: &Isometry3<f64>| {
+        [0, 1].map(|k| pose * Point3::new(0.0, 0.0, c.support.core[k]))
+    };
+    let initial = closest_between_segments(axis(ca, &Isometry3::identity()), axis(cb, pos_ab))
+        .filter(|v| v.norm_squared() > 0.0)
+        .unwrap_or(centers[0] - centers[1]);
+    let rotation = pos_ab.rotation.to_rotation_matrix();
+    let shift = pos_ab.translation.vector;
+    let r = gjk(
+        |d| ca.support.support(d),
+        |d| rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift,
+        initial,
+        target_gap,
+        1e-14 * scale,
+    );
+    if r.intersect {
+        return certified_overlap(ta, tb, pos_ab, slack, &r, centers);
+    }
+    let lower = (r.lower - widen).max(0.0);
+    let upper = r.upper + widen;
+    if (upper - lower).is_nan() || upper - lower > allowed {
+        return None;
+    }
+    Some(ConvexAnswer {
+        value: r.upper.clamp(lower, upper),
+        lower,
+        upper,
+        point_a: r.point_a,
+        point_b: r.point_b,
+        overlap: false,
+        iterations: r.iterations,
+    })
+}
+
+/// `p - q` for the closest points `p` of segment `a` and `q` of segment `b`, either
+/// possibly a point (Ericson, *Real-Time Collision Detection*, 5.1.9).
+fn closest_between_segments(a: [Point3<f64>; 2], b: [Point3<f64>; 2]) -> Option<Vector3<f64>> {
+    let (d1, d2, r) = (a[1] - a[0], b[1] - b[0], a[0] - b[0]);
+    let (aa, ee, f) = (d1.norm_squared(), d2.norm_squared(), d2.dot(&r));
+    let (s, t) = if aa == 0.0 && ee == 0.0 {
+        (0.0, 0.0)
+    } else if aa == 0.0 {
+        (0.0, (f / ee).clamp(0.0, 1.0))
+    } else {
+        let c = d1.dot(&r);
+        if ee == 0.0 {
+            ((-c / aa).clamp(0.0, 1.0), 0.0)
+        } else {
+            let bb = d1.dot(&d2);
+            let denom = aa * ee - bb * bb;
+            let s = if denom > 0.0 {
+                ((bb * f - c * ee) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let t = (bb * s + f) / ee;
+            if t < 0.0 {
+                ((-c / aa).clamp(0.0, 1.0), 0.0)
+            } else if t > 1.0 {
+                (((bb - c) / aa).clamp(0.0, 1.0), 1.0)
+            } else {
+                (s, t)
+            }
+        }
+    };
+    let v = (a[0] + d1 * s) - (b[0] + d2 * t);
+    v.iter().all(|x| x.is_finite()).then_some(v)
+}
+
+/// The narrowest interval the path aims for (module doc): twice the widening by the hulls'
+/// errors, the slack and GJK's rounding, plus [`SETTLE_REL`] of the configuration scale;
+/// `None` unless both trees are certified convex.
+pub fn width_floor(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+) -> Option<f64> {
+    let (ca, cb) = (ta.convex.as_ref()?, tb.convex.as_ref()?);
+    let scale = 1.0 + pos_ab.translation.vector.norm() + ca.support.extent + cb.support.extent;
+    let widen = ca.error + cb.error + slack + GJK_ROUNDING_REL * scale;
+    Some(2.0 * widen + SETTLE_REL * scale)
+}
+
+/// Overlap when a point of both hulls is inside both true solids with a margin above the
+/// trees' eps and the slack (the containment test, [`point_in_solid`]); `None` (decline)
+/// otherwise. Candidates: GJK's common point (often on a flat face of one hull), then
+/// points moved from it towards either solid's centre on its axis (inside that solid,
+/// convexity) or their midpoint, by growing fractions, then points between the centres.
+fn certified_overlap(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+    r: &gjk::GjkResult,
+    centers: [Point3<f64>; 2],
+) -> Option<ConvexAnswer> {
+    let inside = |t: &QueryTree, p: &Point3<f64>| {
+        let c = point_in_solid(t, p);
+        c.inside && c.margin > t.eps + slack
+    };
+    let x = Point3::from((r.point_a.coords + r.point_b.coords) * 0.5);
+    let on = |p: &Point3<f64>, q: &Point3<f64>, t: f64| Point3::from(p.coords.lerp(&q.coords, t));
+    let middle = on(&centers[0], &centers[1], 0.5);
+    let steps = [1e-6, 1e-3, 0.1, 0.5];
+    let candidates = std::iter::once(x)
+        .chain(steps.into_iter().flat_map(|t| {
+            [
+                on(&x, &centers[0], t),
+                on(&x, &centers[1], t),
+                on(&x, &middle, t),
+            ]
+        }))
+        .chain((1..8).map(|k| on(&centers[0], &centers[1], k as f64 / 8.0)));
+    let found = candidates
+        .into_iter()
+        .find(|p| inside(ta, p) && inside(tb, &pos_ab.inverse_transform_point(p)))?;
+    Some(ConvexAnswer {
+        value: 0.0,
+        lower: 0.0,
+        upper: 0.0,
+        point_a: found,
+        point_b: found,
+        overlap: true,
+        iterations: r.iterations,
+    })
+}
