@@ -63,6 +63,9 @@ enum Command {
         /// Draw every solid from the balls and solid tori (closed-form queries).
         #[arg(long)]
         primitives: bool,
+        /// Draw every solid from the shapes certified convex (the GJK path).
+        #[arg(long)]
+        convex: bool,
         /// Run one shard I/N of the campaign (cases whose index is I modulo N; the same
         /// --seed and --count in every shard); merge the shards' --out directories with
         /// `verify merge-queries`.
@@ -148,6 +151,7 @@ fn main() {
             show,
             no_regressions,
             primitives,
+            convex,
             shard,
         } => {
             if eps.is_empty() || eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
@@ -164,6 +168,7 @@ fn main() {
                 regressions: !no_regressions,
                 print_failures: show,
                 primitives,
+                convex,
                 shard,
             };
             let s = verify::queries::run(&opts);

@@ -18,6 +18,7 @@ fn quick_slice_has_no_violations() {
         regressions: true,
         print_failures: 20,
         primitives: false,
+        convex: false,
         shard: None,
     };
     let s = run(&opts);
@@ -42,6 +43,7 @@ fn primitive_slice_has_no_violations() {
         regressions: false,
         print_failures: 20,
         primitives: true,
+        convex: false,
         shard: None,
     };
     let s = run(&opts);
@@ -64,6 +66,7 @@ fn shards_merge_to_the_whole_campaign() {
         regressions: true,
         print_failures: 0,
         primitives: false,
+        convex: false,
         shard,
     };
     let whole = run(&opts(None, "whole"));
@@ -95,4 +98,26 @@ fn shards_merge_to_the_whole_campaign() {
     assert!(e.contains("[2]"), "{e}");
     let e = verify::queries::merge::merge(&[&dirs[0], &dirs[0]]).unwrap_err();
     assert!(e.contains("twice"), "{e}");
+}
+
+/// Convex solids only: every query between two of them takes the GJK path of
+/// `revdist::query::convex`, and the oracle, which knows nothing of it, checks each.
+#[test]
+fn convex_slice_has_no_violations() {
+    let opts = CampaignOptions {
+        count: 300,
+        seed: 14,
+        eps: DEFAULT_EPS.to_vec(),
+        out: std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("verify-queries-convex"),
+        threads: 0,
+        random_profiles: 10,
+        regressions: false,
+        print_failures: 20,
+        primitives: false,
+        convex: true,
+        shard: None,
+    };
+    let s = run(&opts);
+    let report = s.report(opts.print_failures);
+    assert_eq!(s.violation_count(), 0, "\n{report}");
 }

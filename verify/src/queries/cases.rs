@@ -4,7 +4,7 @@
 use super::placement::{
     axis_centre, draw_rotation, interior_point, newton_gap, place_at_gap, quick_eval, spec,
 };
-use super::pool::{pick, Shape};
+use super::pool::{pick, Shape, ShapeSet};
 use crate::random_profiles::SplitMix64;
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use std::fmt::Write as _;
@@ -115,13 +115,7 @@ impl Case {
 }
 
 /// Generates case `id` (deterministic in the seed and id).
-pub fn make_case(
-    id: usize,
-    seed: u64,
-    shapes: &[Shape],
-    eps_list: &[f64],
-    primitives: bool,
-) -> Case {
+pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: ShapeSet) -> Case {
     let mut rng = SplitMix64(seed).fork(0xCA5E_0000 + id as u64);
     let eps = eps_list[rng.int(0, eps_list.len() - 1)];
     // Half the queries run with the default tolerance (the trees' accuracy), a third run to
@@ -160,8 +154,8 @@ pub fn make_case(
     match kind {
         PoseKind::Far => {
             let (a, b) = (
-                pick(&mut rng, shapes, None, primitives),
-                pick(&mut rng, shapes, None, primitives),
+                pick(&mut rng, shapes, None, set),
+                pick(&mut rng, shapes, None, set),
             );
             let (q, _) = draw_rotation(&mut rng);
             let r = if rng.chance(0.5) { 1e3 } else { 1e6 };
@@ -170,7 +164,7 @@ pub fn make_case(
             case(kind, a, b, pose, format!("|t| ~ {r:e}"))
         }
         PoseKind::Coincident => {
-            let a = pick(&mut rng, shapes, None, primitives);
+            let a = pick(&mut rng, shapes, None, set);
             case(
                 kind,
                 a,
@@ -180,8 +174,8 @@ pub fn make_case(
             )
         }
         PoseKind::Nested | PoseKind::NestedNear => {
-            let a = pick(&mut rng, shapes, Some("big"), primitives);
-            let b = pick(&mut rng, shapes, Some("tiny"), primitives);
+            let a = pick(&mut rng, shapes, Some("big"), set);
+            let b = pick(&mut rng, shapes, Some("tiny"), set);
             let (q, _) = draw_rotation(&mut rng);
             let rb = shapes[b].index.geom.radius;
             if let Some(p0) = interior_point(&mut rng, &shapes[a], 1.1 * rb) {
@@ -223,8 +217,8 @@ pub fn make_case(
         }
         _ => {
             let (a, b) = (
-                pick(&mut rng, shapes, None, primitives),
-                pick(&mut rng, shapes, None, primitives),
+                pick(&mut rng, shapes, None, set),
+                pick(&mut rng, shapes, None, set),
             );
             let scale = shapes[a].size.max(shapes[b].size);
             let target = match kind {

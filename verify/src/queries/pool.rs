@@ -17,6 +17,9 @@ pub struct Shape {
     pub random: bool,
     /// Rough size class (for nesting): the index's bounding diagonal.
     pub size: f64,
+    /// revdist certifies the solid convex (its queries against other convex solids take the
+    /// GJK path).
+    pub convex: bool,
 }
 
 /// The pool: built-in models, M_t frames every 0.05, random profiles of three size classes.
@@ -25,12 +28,14 @@ pub fn build_pool(seed: u64, n_random: usize) -> Vec<Shape> {
     let mut push = |name: String, p: Profile, random: bool| {
         let index = oracle::index(&p);
         let size = index.geom.size;
+        let convex = revdist::bvh::convex::certify_convex(&p).is_some();
         shapes.push(Shape {
             name,
             profile: Arc::new(p),
             index,
             random,
             size,
+            convex,
         });
     };
     for name in revdist::models::model_names() {
@@ -135,26 +140,52 @@ pub fn straight_span_profile() -> Profile {
     Profile::new("straight-span", vec![c]).expect("valid profile")
 }
 
+/// Which shapes a campaign draws from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShapeSet {
+    /// The whole pool: built-in models, M_t frames, random profiles.
+    All,
+    /// Balls and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`, `sphere`): the closed form.
+    Primitives,
+    /// Solids whose convexity revdist certifies (`revdist::bvh::convex::certify_convex`):
+    /// the GJK path. The oracle knows nothing of convexity.
+    Convex,
+}
+
 /// Draws a shape index from the pool: built-in, M_t frame or random (of a size class).
 pub(super) fn pick(
     rng: &mut SplitMix64,
     shapes: &[Shape],
     class: Option<&str>,
-    primitives: bool,
+    set: ShapeSet,
 ) -> usize {
-    if primitives {
-        let prims: Vec<usize> = (0..shapes.len())
+    if set != ShapeSet::All {
+        let in_set: Vec<usize> = (0..shapes.len())
             .filter(|&i| {
                 let n = &shapes[i].name;
-                n.starts_with(PRIMITIVE_PREFIX) || n == "ring" || n == "sphere"
+                match set {
+                    ShapeSet::Primitives => {
+                        n.starts_with(PRIMITIVE_PREFIX) || n == "ring" || n == "sphere"
+                    }
+                    _ => shapes[i].convex,
+                }
             })
+            .collect();
+        let of_class: Vec<usize> = in_set
+            .iter()
+            .copied()
             .filter(|&i| match class {
                 Some("big") => shapes[i].size >= 3.0,
                 Some("tiny") => shapes[i].size < 1.0,
                 _ => true,
             })
             .collect();
-        return prims[rng.int(0, prims.len() - 1)];
+        let from = if of_class.is_empty() {
+            &in_set
+        } else {
+            &of_class
+        };
+        return from[rng.int(0, from.len() - 1)];
     }
     let random: Vec<usize> = (0..shapes.len())
         .filter(|&i| shapes[i].random && shapes[i].name.starts_with("rand"))

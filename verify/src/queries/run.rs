@@ -4,7 +4,7 @@
 
 use super::cases::{make_case, Case, PoseKind};
 use super::checked_query::run_case;
-use super::pool::{build_pool, Shape};
+use super::pool::{build_pool, Shape, ShapeSet};
 use super::regressions::regression_cases;
 use super::report::Summary;
 use revdist::solid::Solid;
@@ -37,10 +37,24 @@ pub struct CampaignOptions {
     /// Draw every solid from the balls and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`,
     /// `sphere`), whose queries take the closed form of `revdist::query::offset`.
     pub primitives: bool,
+    /// Draw every solid from the shapes revdist certifies convex (the GJK path); ignored
+    /// with `primitives`.
+    pub convex: bool,
     /// Run only the cases of one shard: `(i, n)` keeps the cases whose index is `i` modulo
     /// `n` (the fixed cases first, then the drawn ones, as numbered without sharding), so
     /// that `n` runs with the same seed and count cover the campaign exactly once.
     pub shard: Option<(usize, usize)>,
+}
+
+impl CampaignOptions {
+    /// The shapes the drawn cases come from.
+    pub fn shape_set(&self) -> ShapeSet {
+        match (self.primitives, self.convex) {
+            (true, _) => ShapeSet::Primitives,
+            (false, true) => ShapeSet::Convex,
+            _ => ShapeSet::All,
+        }
+    }
 }
 
 impl Default for CampaignOptions {
@@ -56,6 +70,7 @@ impl Default for CampaignOptions {
             shard: None,
             print_failures: 25,
             primitives: false,
+            convex: false,
         }
     }
 }
@@ -155,7 +170,7 @@ fn run_inner(opts: &CampaignOptions) -> Summary {
                     Some(c) => c.clone(),
                     None => {
                         let made = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                            make_case(i - n_fixed, opts.seed, &shapes, &opts.eps, opts.primitives)
+                            make_case(i - n_fixed, opts.seed, &shapes, &opts.eps, opts.shape_set())
                         }));
                         match made {
                             Ok(c) => c,
