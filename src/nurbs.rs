@@ -291,7 +291,7 @@ impl NurbsCurve {
             let (min_index, &min) = w.iter().enumerate().min_by(by_value).expect("points");
             let (max_index, &max) = w.iter().enumerate().max_by(by_value).expect("points");
             let ratio = max / min;
-            if !(ratio <= MAX_WEIGHT_RATIO) {
+            if ratio.is_nan() || ratio > MAX_WEIGHT_RATIO {
                 return Err(CurveError::WeightRatio {
                     min,
                     min_index,

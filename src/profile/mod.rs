@@ -142,7 +142,7 @@ impl Profile {
             .reduce(Aabb2::union)
             .expect("non-empty");
         let scale = bbox.diagonal();
-        if !(scale >= MIN_PROFILE_SIZE) {
+        if scale.is_nan() || scale < MIN_PROFILE_SIZE {
             return Err(ProfileError::TooSmall { size: scale });
         }
         let join_tol = JOIN_TOLERANCE_REL * scale;

@@ -95,8 +95,9 @@ impl Part {
         right.push(q[n - 1]);
         for r in 1..n {
             for i in 0..n - r {
-                for c in 0..3 {
-                    q[i][c] = 0.5 * (q[i][c] + q[i + 1][c]);
+                let next = q[i + 1];
+                for (value, after) in q[i].iter_mut().zip(next) {
+                    *value = 0.5 * (*value + after);
                 }
             }
             left.push(q[0]);
@@ -266,7 +267,7 @@ impl Checker {
 fn separated_across_chord(a: &Part, b: &Part, tol: f64) -> bool {
     let chord = a.end() - a.start();
     let length = chord.norm();
-    if !(length > 0.0) {
+    if length.is_nan() || length <= 0.0 {
         return false;
     }
     let normal = Vector2::new(-chord.y, chord.x) / length;
