@@ -158,6 +158,29 @@ pub struct BezierSpan {
     pub homogeneous: Vec<[f64; 3]>,
 }
 
+/// The two halves of a Bezier span at its middle parameter, by de Casteljau's algorithm on
+/// its homogeneous control points `(w rho, w z, w)` (each half keeps the degree).
+pub fn halve_homogeneous(points: &[[f64; 3]]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    let n = points.len();
+    let mut work = points.to_vec();
+    let mut left = Vec::with_capacity(n);
+    let mut right = Vec::with_capacity(n);
+    left.push(work[0]);
+    right.push(work[n - 1]);
+    for r in 1..n {
+        for i in 0..n - r {
+            let next = work[i + 1];
+            for (x, y) in work[i].iter_mut().zip(next) {
+                *x = 0.5 * (*x + y);
+            }
+        }
+        left.push(work[0]);
+        right.push(work[n - 1 - r]);
+    }
+    right.reverse();
+    (left, right)
+}
+
 impl BezierSpan {
     /// Point of the span at local parameter `s` in [0, 1] (de Casteljau, homogeneous).
     pub fn eval_local(&self, s: f64) -> Point2<f64> {

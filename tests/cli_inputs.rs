@@ -379,3 +379,19 @@ fn a_wider_interval_than_asked_says_why() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["width_limit"], "met", "{v}");
 }
+
+/// The mixed-scale disk (radius 1e8, thickness 1e-8): its faces are 1e-16 of its size
+/// apart, below the rounding of its own coordinates, so it is refused as a chain touching
+/// itself instead of answered with an interval 5e-3 wide.
+#[test]
+fn a_disk_thinner_than_its_rounding_is_refused() {
+    let dir = scratch("thin_disk");
+    let f = polyline_file(
+        &dir,
+        "thin",
+        "[[0.0, 0.0], [1e8, 0.0], [1e8, 1e-8], [0.0, 1e-8]]",
+        4,
+    );
+    let e = distance_error(&f, &["--eps", "1e-4"]);
+    assert!(e.contains("must not cross, touch or fold back"), "{e}");
+}

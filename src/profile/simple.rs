@@ -18,7 +18,7 @@
 //! they are smaller than the tolerance; two such parts that still touch are reported, with
 //! the pieces they belong to and the point.
 
-use crate::nurbs::{Aabb2, NurbsCurve};
+use crate::nurbs::{halve_homogeneous, Aabb2, NurbsCurve};
 use nalgebra::{Point2, Vector2};
 
 /// Two parts of a profile that come closer than this fraction of its size (bounding-box
@@ -87,23 +87,7 @@ impl Part {
 
     /// The two halves at the middle parameter (de Casteljau on homogeneous points).
     fn halves(&self) -> (Part, Part) {
-        let n = self.homogeneous.len();
-        let mut q = self.homogeneous.clone();
-        let mut left = Vec::with_capacity(n);
-        let mut right = Vec::with_capacity(n);
-        left.push(q[0]);
-        right.push(q[n - 1]);
-        for r in 1..n {
-            for i in 0..n - r {
-                let next = q[i + 1];
-                for (value, after) in q[i].iter_mut().zip(next) {
-                    *value = 0.5 * (*value + after);
-                }
-            }
-            left.push(q[0]);
-            right.push(q[n - 1 - r]);
-        }
-        right.reverse();
+        let (left, right) = halve_homogeneous(&self.homogeneous);
         let part = |homogeneous| Part {
             piece: self.piece,
             homogeneous,

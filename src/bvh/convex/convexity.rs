@@ -206,7 +206,7 @@ fn span_run(h: &[[f64; 3]], depth: u32) -> Option<Option<Run>> {
     match polygon_run(&points) {
         Some(run) => Some(run),
         None if depth > 0 => {
-            let (left, right) = halve(h);
+            let (left, right) = crate::nurbs::halve_homogeneous(h);
             let left = span_run(&left, depth - 1)?;
             let right = span_run(&right, depth - 1)?;
             append(left, right)
@@ -262,26 +262,4 @@ fn polygon_run(points: &[Point2<f64>]) -> Option<Option<Run>> {
         kinks: 0.0,
         length,
     }))
-}
-
-/// De Casteljau halving of a homogeneous Bezier span.
-fn halve(h: &[[f64; 3]]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
-    let n = h.len();
-    let mut work = h.to_vec();
-    let mut left = Vec::with_capacity(n);
-    let mut right = Vec::with_capacity(n);
-    left.push(work[0]);
-    right.push(work[n - 1]);
-    for r in 1..n {
-        for i in 0..n - r {
-            let next = work[i + 1];
-            for (x, y) in work[i].iter_mut().zip(next) {
-                *x = 0.5 * (*x + y);
-            }
-        }
-        left.push(work[0]);
-        right.push(work[n - 1 - r]);
-    }
-    right.reverse();
-    (left, right)
 }
