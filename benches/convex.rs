@@ -105,7 +105,10 @@ fn freeform(a: f64, h: f64, k: [f64; 4]) -> Profile {
 
 fn main() {
     let mut rng = Rng(0xC0FFEE);
-    let on = QueryOptions::default();
+    let on = QueryOptions {
+        convex_path: true,
+        ..QueryOptions::default()
+    };
     let off = QueryOptions {
         convex_path: false,
         ..QueryOptions::default()

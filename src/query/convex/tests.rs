@@ -18,12 +18,20 @@ fn solid(name: &str, eps: f64) -> Solid {
     Solid::from_profile(Arc::new(model(name).unwrap()), eps).unwrap()
 }
 
+/// The default options with the convex path on (it is off by default).
+fn with_fast_path() -> QueryOptions {
+    QueryOptions {
+        convex_path: true,
+        ..QueryOptions::default()
+    }
+}
+
 fn traversal_exact() -> QueryOptions {
     QueryOptions {
         tolerance: Tolerance::Absolute(0.0),
         convex_path: false,
         closed_form: false,
-        ..QueryOptions::default()
+        ..with_fast_path()
     }
 }
 
@@ -78,7 +86,7 @@ fn probe_convex_models() {
             let t0 = std::time::Instant::now();
             for _ in 0..200 {
                 let pose = random_pose(&mut rng, 1.2, 2.5);
-                let d = distance(&a, &b.with_pose(pose), &QueryOptions::default());
+                let d = distance(&a, &b.with_pose(pose), &with_fast_path());
                 n += d.stats.convex_paths;
                 iters += 1;
             }
@@ -165,7 +173,7 @@ fn probe_freeform() {
             for _ in 0..20 {
                 let bp = b.with_pose(random_pose(&mut rng, 1.0, 3.0));
                 let t0 = std::time::Instant::now();
-                let d = distance(&a, &bp, &QueryOptions::default());
+                let d = distance(&a, &bp, &with_fast_path());
                 t_on += t0.elapsed().as_secs_f64();
                 let t0 = std::time::Instant::now();
                 let _ = distance(
@@ -173,7 +181,7 @@ fn probe_freeform() {
                     &bp,
                     &QueryOptions {
                         convex_path: false,
-                        ..QueryOptions::default()
+                        ..with_fast_path()
                     },
                 );
                 t_off += t0.elapsed().as_secs_f64();
@@ -489,7 +497,7 @@ fn fast_path_contains_the_traversals_distance() {
     let solids: Vec<Solid> = CONVEX_MODELS.iter().map(|n| solid(n, eps)).collect();
     let fast_opts = QueryOptions {
         closed_form: false,
-        ..QueryOptions::default()
+        ..with_fast_path()
     };
     let (mut poses, mut by_fast_path, mut overlaps) = (0, 0, 0);
     for i in 0..4 {
@@ -544,7 +552,7 @@ fn fast_path_contains_analytic_distances() {
     let opts = QueryOptions {
         closed_form: false,
         tolerance: Tolerance::Absolute(1e-9),
-        ..QueryOptions::default()
+        ..with_fast_path()
     };
     let mut fast = 0;
     for k in 0..400 {
@@ -596,7 +604,7 @@ fn width_meets_the_tolerance() {
     ] {
         let opts = QueryOptions {
             tolerance,
-            ..QueryOptions::default()
+            ..with_fast_path()
         };
         for k in 0..200 {
             let (a, b) = (&solids[k % 4], &solids[(k / 4) % 4]);
@@ -651,7 +659,7 @@ proptest::proptest! {
             };
             let Some(pose) = pose else { continue };
             let bp = b.with_pose(pose);
-            let fast = distance(&a, &bp, &QueryOptions::default());
+            let fast = distance(&a, &bp, &with_fast_path());
             let reference = distance(&a, &bp, &traversal_exact());
             assert_meets(&fast, &reference, "random convex");
             let requested = Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps);
