@@ -13,13 +13,15 @@ pub mod binormal;
 mod certified;
 mod descent;
 mod frame;
+pub mod min_distance;
 pub mod parallel;
 pub mod point;
 pub mod poly8;
 
 use nalgebra::{Isometry3, Point3, Unit, Vector3};
 
-pub use binormal::{binormals, min_distance, min_distance_value};
+pub use binormal::binormals;
+pub use min_distance::{min_distance, min_distance_value};
 pub use point::{point_circle_distance, PointCircleDistance};
 
 /// Two directions are treated as parallel when the sine of their angle is below this:

@@ -30,7 +30,14 @@ pub(crate) fn oracle_min(a: &Circle3, b: &Circle3) -> f64 {
     minima
         .iter()
         .take(6)
-        .map(|&(m, k)| f(binormal::golden_min(f, k as f64 * h - h, k as f64 * h + h)).min(m))
+        .map(|&(m, k)| {
+            f(min_distance::golden_min(
+                f,
+                k as f64 * h - h,
+                k as f64 * h + h,
+            ))
+            .min(m)
+        })
         .fold(f64::INFINITY, f64::min)
 }
 
