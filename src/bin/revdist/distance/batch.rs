@@ -10,16 +10,16 @@
 //! * exit status 0 when every line succeeded, 1 when some line failed (after every line
 //!   ran), 2 for a usage error (no input, bad flags).
 //!
-//! Pipeline: a reader thread splits the input into lines; worker threads take lines one at a
-//! time from a shared queue (a slow query holds only its own worker), parse them, build each
-//! shape once (shared cache) and run the query; the calling thread writes the answers back in
-//! input order. The reader stays at most [`MAX_AHEAD`] lines ahead of the writer, so memory
-//! stays bounded however long the input.
+//! Pipeline: worker threads take the input one line at a time (each reads the next line
+//! under a lock, so a slow query holds only its own worker), parse it, build each shape once
+//! (shared cache) and run the query; the worker that completes the next line due writes it,
+//! and any answers after it that are ready, in input order. No thread waits on another
+//! except for a shape being built, or when the workers run [`MAX_AHEAD`] lines ahead of a
+//! slow line, so memory stays bounded however long the input.
 
 use std::collections::BTreeMap;
 use std::io::{BufRead, BufReader, Read, Write};
-use std::sync::mpsc::{channel, sync_channel, Receiver};
-use std::sync::{Arc, Condvar, Mutex};
+use std::sync::{Condvar, Mutex};
 
 use revdist::query::QueryOptions;
 
@@ -28,9 +28,6 @@ use crate::CmdResult;
 
 /// How many lines the reader may run ahead of the writer.
 const MAX_AHEAD: usize = 1 << 16;
-
-/// Lines waiting in the queue between the reader and the workers.
-const QUEUE_DEPTH: usize = 256;
 
 /// The UTF-8 byte-order mark.
 const BOM: &[u8] = b"\xEF\xBB\xBF";
@@ -69,145 +66,172 @@ pub fn run(path: &str, settings: &Settings) -> CmdResult {
         }
         Box::new(std::fs::File::open(path).map_err(|e| format!("cannot open '{path}': {e}"))?)
     };
-    let stdout = std::io::stdout();
-    let (total, failed) = run_with(input, &mut stdout.lock(), settings)?;
+    // Standard output is line-buffered; the writer flushes once per burst of answers.
+    let mut out = std::io::BufWriter::new(std::io::stdout());
+    let (total, failed) = run_with(input, &mut out, settings)?;
     if failed > 0 {
         return Err(Box::new(LinesFailed { failed, total }));
     }
     Ok(())
 }
 
-/// Lines written so far, and a signal for the reader waiting to run ahead.
-type Progress = Arc<(Mutex<usize>, Condvar)>;
+/// The input, read one line at a time by whichever worker is free.
+struct Lines {
+    reader: BufReader<Box<dyn Read + Send>>,
+    /// Number of the last line read (1-based).
+    read: usize,
+    /// An I/O error ended the input (not bad content): the lines before it are answered.
+    error: Option<String>,
+}
+
+/// Answers waiting for the lines before them, and what has been written.
+struct Output<'a> {
+    out: &'a mut (dyn Write + Send),
+    pending: BTreeMap<usize, Result<String, String>>,
+    /// Number of the next line to write.
+    next: usize,
+    failed: usize,
+    error: Option<std::io::Error>,
+}
+
+impl Output<'_> {
+    /// Files the answer of line `number` and writes every answer now due, in order.
+    fn file(&mut self, number: usize, answer: Result<String, String>) {
+        self.pending.insert(number, answer);
+        while let Some(answer) = self.pending.remove(&self.next) {
+            let text = answer.unwrap_or_else(|error| {
+                self.failed += 1;
+                serde_json::json!({ "line": self.next, "error": error }).to_string()
+            });
+            if self.error.is_none() {
+                if let Err(e) = writeln!(self.out, "{text}") {
+                    self.error = Some(e);
+                }
+            }
+            self.next += 1;
+        }
+        if self.pending.is_empty() && self.error.is_none() {
+            // Caught up: one write per burst of answers.
+            if let Err(e) = self.out.flush() {
+                self.error = Some(e);
+            }
+        }
+    }
+}
 
 /// The batch from `input` to `out`; returns (lines, failed lines). An input that cannot be
 /// read further (an I/O error, not bad content) ends the batch after the lines before it
 /// were answered, with that error.
 pub fn run_with(
     input: Box<dyn Read + Send>,
-    out: &mut dyn Write,
+    out: &mut (dyn Write + Send),
     settings: &Settings,
 ) -> Result<(usize, usize), Box<dyn std::error::Error>> {
-    let written: Progress = Arc::new((Mutex::new(0), Condvar::new()));
-    let (job_tx, job_rx) = sync_channel::<Job>(QUEUE_DEPTH);
-    let (answer_tx, answer_rx) = channel::<(usize, Result<String, String>)>();
+    let lines = Mutex::new(Lines {
+        reader: BufReader::new(input),
+        read: 0,
+        error: None,
+    });
+    let output = Mutex::new(Output {
+        out,
+        pending: BTreeMap::new(),
+        next: 1,
+        failed: 0,
+        error: None,
+    });
+    let caught_up = Condvar::new();
     let cache = SolidCache::default();
-    let jobs = Mutex::new(job_rx);
     std::thread::scope(|scope| {
-        let reader = {
-            let written = Arc::clone(&written);
-            scope.spawn(move || read_lines(input, &job_tx, &written))
-        };
         for _ in 0..settings.threads.max(1) {
-            let (jobs, answers, cache) = (&jobs, answer_tx.clone(), &cache);
-            scope.spawn(move || work(jobs, &answers, settings, cache));
+            scope.spawn(|| work(&lines, &output, &caught_up, settings, &cache));
         }
-        drop(answer_tx);
-        let counts = write_in_order(&answer_rx, out, &written);
-        let read = reader
-            .join()
-            .unwrap_or_else(|_| Err("the input reader stopped unexpectedly".into()));
-        let counts = counts?;
-        read?;
-        Ok(counts)
-    })
-}
-
-/// Splits `input` into numbered lines for the workers (see the module doc for blank,
-/// non-UTF-8 and byte-order-mark lines); waits while [`MAX_AHEAD`] lines are unwritten.
-fn read_lines(
-    input: Box<dyn Read + Send>,
-    jobs: &std::sync::mpsc::SyncSender<Job>,
-    written: &Progress,
-) -> Result<(), String> {
-    let mut reader = BufReader::new(input);
-    let mut bytes = Vec::new();
-    for number in 1.. {
-        bytes.clear();
-        let n = reader
-            .read_until(b'\n', &mut bytes)
-            .map_err(|e| format!("reading the batch input after line {}: {e}", number - 1))?;
-        if n == 0 {
-            return Ok(());
-        }
-        if bytes.last() == Some(&b'\n') {
-            bytes.pop();
-        }
-        if bytes.last() == Some(&b'\r') {
-            bytes.pop();
-        }
-        let text = if number == 1 && bytes.starts_with(BOM) {
-            &bytes[BOM.len()..]
-        } else {
-            &bytes[..]
-        };
-        let job = match std::str::from_utf8(text) {
-            Err(e) => Err(format!(
-                "line is not valid UTF-8 (byte 0x{:02X} at column {})",
-                text[e.valid_up_to()],
-                e.valid_up_to() + 1
-            )),
-            Ok(t) if t.trim().is_empty() => Err("blank line: no request".to_string()),
-            Ok(t) => Ok(t.to_string()),
-        };
-        {
-            let (lock, signal) = &**written;
-            let mut done = lock.lock().unwrap_or_else(|e| e.into_inner());
-            while number > *done + MAX_AHEAD {
-                done = signal.wait(done).unwrap_or_else(|e| e.into_inner());
-            }
-        }
-        if jobs.send((number, job)).is_err() {
-            return Ok(());
-        }
+    });
+    let lines = lines.into_inner().unwrap_or_else(|e| e.into_inner());
+    let mut output = output.into_inner().unwrap_or_else(|e| e.into_inner());
+    if let Some(e) = output.error.take() {
+        return Err(e.into());
     }
-    Ok(())
+    output.out.flush()?;
+    if let Some(e) = lines.error {
+        return Err(e.into());
+    }
+    Ok((output.next - 1, output.failed))
 }
 
-/// A worker: takes one line at a time until the queue closes.
+/// A worker: reads the next line, answers it and files the answer, until the input ends.
 fn work(
-    jobs: &Mutex<Receiver<Job>>,
-    answers: &std::sync::mpsc::Sender<(usize, Result<String, String>)>,
+    lines: &Mutex<Lines>,
+    output: &Mutex<Output>,
+    caught_up: &Condvar,
     settings: &Settings,
     cache: &SolidCache,
 ) {
     loop {
-        let next = jobs.lock().unwrap_or_else(|e| e.into_inner()).recv();
-        let Ok((number, line)) = next else { return };
+        let Some((number, line)) = next_line(lines) else {
+            return;
+        };
+        // Stay within MAX_AHEAD lines of the oldest unwritten one.
+        {
+            let mut o = output.lock().unwrap_or_else(|e| e.into_inner());
+            while number > o.next + MAX_AHEAD {
+                o = caught_up.wait(o).unwrap_or_else(|e| e.into_inner());
+            }
+        }
         let answer = answer_line(
             number,
             line.as_deref().map_err(Clone::clone),
             settings,
             cache,
         );
-        if answers.send((number, answer)).is_err() {
-            return;
+        let mut o = output.lock().unwrap_or_else(|e| e.into_inner());
+        let before = o.next;
+        o.file(number, answer);
+        if o.next > before {
+            caught_up.notify_all();
         }
     }
 }
 
-/// Writes the answers in input order as they arrive; returns (lines, failed lines).
-fn write_in_order(
-    answers: &Receiver<(usize, Result<String, String>)>,
-    out: &mut dyn Write,
-    written: &Progress,
-) -> Result<(usize, usize), std::io::Error> {
-    let mut pending = BTreeMap::new();
-    let (mut next, mut failed) = (1usize, 0usize);
-    for (number, answer) in answers {
-        pending.insert(number, answer);
-        while let Some(answer) = pending.remove(&next) {
-            let text = answer.unwrap_or_else(|error| {
-                failed += 1;
-                serde_json::json!({ "line": next, "error": error }).to_string()
-            });
-            writeln!(out, "{text}")?;
-            next += 1;
-        }
-        out.flush()?;
-        let (lock, signal) = &**written;
-        *lock.lock().unwrap_or_else(|e| e.into_inner()) = next - 1;
-        signal.notify_all();
+/// The next numbered line of the input (see the module doc for blank, non-UTF-8 and
+/// byte-order-mark lines), or `None` at its end or after a read error (kept in `lines`).
+fn next_line(lines: &Mutex<Lines>) -> Option<Job> {
+    let mut l = lines.lock().unwrap_or_else(|e| e.into_inner());
+    if l.error.is_some() {
+        return None;
     }
-    Ok((next - 1, failed))
+    let mut bytes = Vec::new();
+    let number = l.read + 1;
+    match l.reader.read_until(b'\n', &mut bytes) {
+        Ok(0) => return None,
+        Ok(_) => l.read = number,
+        Err(e) => {
+            l.error = Some(format!(
+                "reading the batch input after line {}: {e}",
+                number - 1
+            ));
+            return None;
+        }
+    }
+    drop(l);
+    if bytes.last() == Some(&b'\n') {
+        bytes.pop();
+    }
+    if bytes.last() == Some(&b'\r') {
+        bytes.pop();
+    }
+    let text = if number == 1 && bytes.starts_with(BOM) {
+        &bytes[BOM.len()..]
+    } else {
+        &bytes[..]
+    };
+    let job = match std::str::from_utf8(text) {
+        Err(e) => Err(format!(
+            "line is not valid UTF-8 (byte 0x{:02X} at column {})",
+            text[e.valid_up_to()],
+            e.valid_up_to() + 1
+        )),
+        Ok(t) if t.trim().is_empty() => Err("blank line: no request".to_string()),
+        Ok(t) => Ok(t.to_string()),
+    };
+    Some((number, job))
 }
