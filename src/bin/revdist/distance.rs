@@ -5,6 +5,8 @@
 //! frame is at `R x + t`, `R` the unit quaternion `rotation` (w first), `t` the
 //! `translation`. Output points are in A's frame.
 
+pub(crate) mod batch;
+
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -343,5 +345,3 @@ pub(crate) fn answer_line(
     out.time_us = settings.timings.then_some(time_us);
     serde_json::to_string(&out).map_err(|e| e.to_string())
 }
-
-pub(crate) mod batch;
