@@ -23,6 +23,7 @@ pub mod poly;
 pub mod profile;
 pub mod profile_file;
 pub mod query;
+pub mod request;
 pub mod solid;
 pub mod svg;
 pub mod tessellate;

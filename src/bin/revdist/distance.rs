@@ -10,10 +10,12 @@ pub(crate) mod batch;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
-use revdist::limits::check_translation;
+use nalgebra::Isometry3;
 use revdist::query::traverse::width_limit;
-use revdist::query::{try_distance, Budget, Distance, QueryOptions, Tolerance};
+use revdist::query::{try_distance, Distance, QueryOptions};
+use revdist::request::{
+    build_solid, check_eps, check_tolerance, pose_from_quaternion, query_options,
+};
 use revdist::solid::Solid;
 use serde::{Deserialize, Serialize};
 
@@ -22,9 +24,6 @@ use crate::CmdResult;
 
 /// Default approximation bound of the biarc trees.
 const DEFAULT_EPS: f64 = 1e-4;
-/// A quaternion whose norm differs from 1 by more than this is rejected (it is not a
-/// rotation written with ~7 significant digits); closer ones are normalised.
-const UNIT_QUATERNION_SLACK: f64 = 1e-6;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -143,41 +142,16 @@ impl From<&Distance> for Output {
 }
 
 fn pose_from_json(p: &PoseJson) -> Result<Isometry3<f64>, String> {
-    let t = check_translation("translation", p.translation.unwrap_or([0.0; 3]))
-        .map_err(|e| e.to_string())?;
-    let r = p.rotation.unwrap_or([1.0, 0.0, 0.0, 0.0]);
-    let q = Quaternion::new(r[0], r[1], r[2], r[3]);
-    let n = q.norm();
-    if !n.is_finite() || (n - 1.0).abs() > UNIT_QUATERNION_SLACK {
-        return Err(format!(
-            "rotation {r:?} is not a unit quaternion [w, x, y, z] (norm {n})"
-        ));
-    }
-    Ok(Isometry3::from_parts(
-        Translation3::from(Vector3::from(t)),
-        UnitQuaternion::from_quaternion(q),
-    ))
+    pose_from_quaternion(
+        p.translation.unwrap_or([0.0; 3]),
+        p.rotation.unwrap_or([1.0, 0.0, 0.0, 0.0]),
+    )
+    .map_err(|e| e.to_string())
 }
 
 fn parse_pose(s: &str) -> Result<Isometry3<f64>, String> {
     let p: PoseJson = serde_json::from_str(s).map_err(|e| format!("--pose-b: {e}"))?;
     pose_from_json(&p).map_err(|e| format!("--pose-b: {e}"))
-}
-
-fn check_eps(eps: f64) -> Result<(), String> {
-    if eps.is_finite() && eps > 0.0 {
-        Ok(())
-    } else {
-        Err(format!("eps must be a positive number, got {eps}"))
-    }
-}
-
-fn check_tolerance(t: f64) -> Result<(), String> {
-    if t.is_finite() && t >= 0.0 {
-        Ok(())
-    } else {
-        Err(format!("tolerance must be a non-negative number, got {t}"))
-    }
 }
 
 /// A solid built once for every query that names it.
@@ -198,37 +172,19 @@ impl SolidCache {
         };
         slot.get_or_init(|| {
             let profile = load_profile(spec).map_err(|e| e.to_string())?;
-            Solid::from_profile(Arc::new(profile), eps)
-                .map_err(|e| format!("'{spec}' at eps {eps}: {e}"))
+            build_solid(spec, profile, eps).map_err(|e| e.to_string())
         })
         .clone()
     }
 }
 
 pub fn run(args: Args) -> CmdResult {
-    let tolerance = match args.tolerance {
-        Some(t) => {
-            check_tolerance(t)?;
-            Tolerance::Absolute(t)
-        }
-        None => Tolerance::Trees,
-    };
-    let max_time = match args.max_time_ms {
-        Some(ms) if ms.is_finite() && ms > 0.0 => {
-            Some(std::time::Duration::from_secs_f64(ms / 1e3))
-        }
-        Some(ms) => return Err(format!("--max-time-ms must be a positive number, got {ms}").into()),
-        None => None,
-    };
-    let opts = QueryOptions {
-        tolerance,
-        budget: Budget {
-            max_node_pairs: args.max_node_pairs,
-            max_time,
-        },
-        refine: args.refine,
-        ..QueryOptions::default()
-    };
+    let opts = query_options(
+        args.tolerance,
+        args.max_node_pairs,
+        ("--max-time-ms", args.max_time_ms),
+        args.refine,
+    )?;
     if let Some(path) = &args.batch {
         check_eps(args.eps)?;
         let threads = match args.threads {
@@ -309,12 +265,10 @@ pub(crate) fn prepare_request(
     cache: &SolidCache,
 ) -> Result<(Solid, Solid, QueryOptions), String> {
     let req: Request = serde_json::from_str(line).map_err(|e| format!("bad request: {e}"))?;
-    let eps = req.eps.unwrap_or(settings.default_eps);
-    check_eps(eps)?;
+    let eps = check_eps(req.eps.unwrap_or(settings.default_eps)).map_err(|e| e.to_string())?;
     let mut opts = settings.opts;
     if let Some(t) = req.tolerance {
-        check_tolerance(t)?;
-        opts.tolerance = Tolerance::Absolute(t);
+        opts.tolerance = check_tolerance(Some(t)).map_err(|e| e.to_string())?;
     }
     if let Some(r) = req.refine {
         opts.refine = r;

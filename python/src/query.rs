@@ -1,0 +1,282 @@
+//! `revdist.distance` (independent poses, spread over the cores with rayon) and
+//! `revdist.Pair` (a motion: consecutive poses warm-start each other through a
+//! `QueryCache`). Both release the GIL for the whole batch.
+//!
+//! Each pose is measured by `revdist::query::try_distance` (`try_distance_cached` for a
+//! `Pair`) with A at `pose_a` and B at the pose, exactly the command line's batch query
+//! (`revdist distance --batch`, which places A at the identity), so that the answers are
+//! the same bits.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use nalgebra::Isometry3;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyReadonlyArrayDyn};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+use revdist::query::traverse::width_limit;
+use revdist::query::{try_distance, try_distance_cached, Distance, QueryCache, QueryOptions};
+use revdist::request::query_options;
+use revdist::solid::Solid;
+
+use crate::errors::value_error;
+use crate::poses::{self, Poses};
+use crate::solid::PySolid;
+
+/// Names of `revdist::query::traverse::WidthLimit`, indexed by the codes of the
+/// `width_limit_code` array (the command line's `"width_limit"` strings).
+pub const WIDTH_LIMIT_NAMES: [&str; 4] = ["met", "budget", "rounding", "leaves"];
+
+/// One pose's answer, or its error message.
+type Answer = Result<(Distance, u8), String>;
+
+/// What a call asks, checked: the poses of A (one, or one per pose of B) and of B, and the
+/// query options.
+struct Call {
+    poses_a: Vec<Isometry3<f64>>,
+    poses_b: Poses,
+    opts: QueryOptions,
+}
+
+impl Call {
+    fn new(
+        poses_b: &PyReadonlyArrayDyn<'_, f64>,
+        pose_a: Option<&PyReadonlyArrayDyn<'_, f64>>,
+        tolerance: Option<f64>,
+        max_time_ms: Option<f64>,
+        max_node_pairs: Option<usize>,
+        refine: bool,
+    ) -> PyResult<Call> {
+        let opts = query_options(
+            tolerance,
+            max_node_pairs,
+            ("max_time_ms", max_time_ms),
+            refine,
+        )
+        .map_err(value_error)?;
+        let poses_b = poses::read("poses", poses_b)?;
+        let poses_a = match pose_a {
+            None => vec![Isometry3::identity()],
+            Some(p) => poses::read("pose_a", p)?.poses,
+        };
+        if poses_a.len() != 1 && poses_a.len() != poses_b.poses.len() {
+            return Err(value_error(format!(
+                "pose_a holds {} poses and poses {}: give one pose_a or one per pose",
+                poses_a.len(),
+                poses_b.poses.len()
+            )));
+        }
+        Ok(Call {
+            poses_a,
+            poses_b,
+            opts,
+        })
+    }
+
+    fn pose_a(&self, i: usize) -> Isometry3<f64> {
+        self.poses_a[if self.poses_a.len() == 1 { 0 } else { i }]
+    }
+}
+
+/// The query of pose `i`: A at its pose, B at its pose, with or without a warm start.
+fn answer(a: &Solid, b: &Solid, call: &Call, i: usize, cache: Option<&mut QueryCache>) -> Answer {
+    let a = a.with_pose(call.pose_a(i));
+    let b = b.with_pose(call.poses_b.poses[i]);
+    let d = match cache {
+        Some(cache) => try_distance_cached(&a, &b, &call.opts, cache),
+        None => try_distance(&a, &b, &call.opts),
+    }
+    .map_err(|e| format!("poses[{i}]: {e}"))?;
+    let limit = width_limit(&a, &b, &call.opts, &d) as u8;
+    Ok((d, limit))
+}
+
+/// The answers as numpy arrays in a dict (the Python layer wraps them in `DistanceResult`),
+/// or the first pose's error as a `ValueError`.
+fn arrays<'py>(
+    py: Python<'py>,
+    answers: Vec<Answer>,
+    single: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let n = answers.len();
+    let mut value = Vec::with_capacity(n);
+    let mut lower = Vec::with_capacity(n);
+    let mut upper = Vec::with_capacity(n);
+    let mut point_a = Vec::with_capacity(3 * n);
+    let mut point_b = Vec::with_capacity(3 * n);
+    let mut overlap = Vec::with_capacity(n);
+    let mut limit = Vec::with_capacity(n);
+    let mut node_pairs = Vec::with_capacity(n);
+    let mut leaf_bounds = Vec::with_capacity(n);
+    let mut leaf_tests = Vec::with_capacity(n);
+    let mut subdivided = Vec::with_capacity(n);
+    let mut budget = Vec::with_capacity(n);
+    let mut closed = Vec::with_capacity(n);
+    for a in answers {
+        let (d, code) = a.map_err(value_error)?;
+        value.push(d.value);
+        lower.push(d.lower);
+        upper.push(d.upper);
+        point_a.extend([d.point_a.x, d.point_a.y, d.point_a.z]);
+        point_b.extend([d.point_b.x, d.point_b.y, d.point_b.z]);
+        overlap.push(d.overlap);
+        limit.push(code);
+        node_pairs.push(d.stats.node_pairs as u64);
+        leaf_bounds.push(d.stats.leaf_bounds as u64);
+        leaf_tests.push(d.stats.leaf_tests as u64);
+        subdivided.push(d.stats.subdivided_pairs as u64);
+        budget.push(d.stats.budget_exhausted);
+        closed.push(d.stats.closed_forms > 0);
+    }
+    let points = |v: Vec<f64>| Array2::from_shape_vec((n, 3), v).map_err(value_error);
+    let out = PyDict::new(py);
+    out.set_item("value", value.into_pyarray(py))?;
+    out.set_item("lower", lower.into_pyarray(py))?;
+    out.set_item("upper", upper.into_pyarray(py))?;
+    out.set_item("point_a", points(point_a)?.into_pyarray(py))?;
+    out.set_item("point_b", points(point_b)?.into_pyarray(py))?;
+    out.set_item("overlap", overlap.into_pyarray(py))?;
+    out.set_item("width_limit_code", limit.into_pyarray(py))?;
+    out.set_item("node_pairs", node_pairs.into_pyarray(py))?;
+    out.set_item("leaf_bounds", leaf_bounds.into_pyarray(py))?;
+    out.set_item("leaf_tests", leaf_tests.into_pyarray(py))?;
+    out.set_item("subdivided_pairs", subdivided.into_pyarray(py))?;
+    out.set_item("budget_exhausted", budget.into_pyarray(py))?;
+    out.set_item("closed_form", closed.into_pyarray(py))?;
+    out.set_item("single", single)?;
+    Ok(out)
+}
+
+/// Rayon pools by thread count, built once each (a pool costs ~100 us to start).
+fn pool(threads: usize) -> PyResult<Arc<rayon::ThreadPool>> {
+    static POOLS: OnceLock<Mutex<HashMap<usize, Arc<rayon::ThreadPool>>>> = OnceLock::new();
+    let mut pools = POOLS
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    if let Some(p) = pools.get(&threads) {
+        return Ok(Arc::clone(p));
+    }
+    let p = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| value_error(format!("cannot start {threads} threads: {e}")))?;
+    let p = Arc::new(p);
+    pools.insert(threads, Arc::clone(&p));
+    Ok(p)
+}
+
+/// Certified distances between solid `a` (at `pose_a`, default the identity) and solid `b`
+/// at each of `poses`; see the Python docstring of `revdist.distance`.
+#[pyfunction]
+#[pyo3(signature = (a, b, poses, *, pose_a = None, tolerance = None, max_time_ms = None,
+    max_node_pairs = None, refine = false, threads = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn distance<'py>(
+    py: Python<'py>,
+    a: &PySolid,
+    b: &PySolid,
+    poses: PyReadonlyArrayDyn<'py, f64>,
+    pose_a: Option<PyReadonlyArrayDyn<'py, f64>>,
+    tolerance: Option<f64>,
+    max_time_ms: Option<f64>,
+    max_node_pairs: Option<usize>,
+    refine: bool,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let call = Call::new(
+        &poses,
+        pose_a.as_ref(),
+        tolerance,
+        max_time_ms,
+        max_node_pairs,
+        refine,
+    )?;
+    let pool = match threads {
+        Some(0) => return Err(value_error("threads must be at least 1")),
+        Some(t) => Some(pool(t)?),
+        None => None,
+    };
+    let (sa, sb) = (&a.solid, &b.solid);
+    let n = call.poses_b.poses.len();
+    let answers = py.detach(|| {
+        let run = || -> Vec<Answer> {
+            (0..n)
+                .into_par_iter()
+                .map(|i| answer(sa, sb, &call, i, None))
+                .collect()
+        };
+        match &pool {
+            Some(p) => p.install(run),
+            None => run(),
+        }
+    });
+    arrays(py, answers, call.poses_b.single)
+}
+
+/// A prepared pair for a motion: each query warm-starts from the last one's closest leaf
+/// pair (`revdist::query::QueryCache`); see the Python docstring of `revdist.Pair`.
+#[pyclass(name = "Pair", module = "revdist", frozen)]
+pub struct PyPair {
+    a: Solid,
+    b: Solid,
+    cache: Mutex<QueryCache>,
+}
+
+#[pymethods]
+impl PyPair {
+    #[new]
+    fn new(a: &PySolid, b: &PySolid) -> Self {
+        PyPair {
+            a: a.solid.clone(),
+            b: b.solid.clone(),
+            cache: Mutex::new(QueryCache::default()),
+        }
+    }
+
+    /// Distances at `poses`, in order, each warm-started by the previous one (and the first
+    /// by the last pose of the previous call); the GIL is released for the whole sequence.
+    #[pyo3(signature = (poses, *, pose_a = None, tolerance = None, max_time_ms = None,
+        max_node_pairs = None, refine = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn distance<'py>(
+        &self,
+        py: Python<'py>,
+        poses: PyReadonlyArrayDyn<'py, f64>,
+        pose_a: Option<PyReadonlyArrayDyn<'py, f64>>,
+        tolerance: Option<f64>,
+        max_time_ms: Option<f64>,
+        max_node_pairs: Option<usize>,
+        refine: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let call = Call::new(
+            &poses,
+            pose_a.as_ref(),
+            tolerance,
+            max_time_ms,
+            max_node_pairs,
+            refine,
+        )?;
+        let answers = py.detach(|| {
+            let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
+            let mut out = Vec::with_capacity(call.poses_b.poses.len());
+            for i in 0..call.poses_b.poses.len() {
+                let r = answer(&self.a, &self.b, &call, i, Some(&mut cache));
+                let failed = r.is_err();
+                out.push(r);
+                if failed {
+                    break;
+                }
+            }
+            out
+        });
+        arrays(py, answers, call.poses_b.single)
+    }
+
+    /// Forgets the warm start (the next query is cold).
+    fn reset(&self) {
+        *self.cache.lock().unwrap_or_else(|e| e.into_inner()) = QueryCache::default();
+    }
+}
