@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs revdist's whole test suite (core, verify, experiments), installing system packages first.
+# Runs revdist's whole test suite (core, verify, experiments, the Python package), installing
+# system packages first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
@@ -7,3 +8,5 @@ scripts/deps.sh
 # CI on a profile no test had met); set PROPTEST_RNG_SEED to another value to explore.
 export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261125}"
 cargo test --workspace --release
+# The Python package: built into target/python-venv and tested with pytest.
+scripts/python-test.sh

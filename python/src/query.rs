@@ -194,24 +194,21 @@ pub fn distance<'py>(
         max_node_pairs,
         refine,
     )?;
+    // One thread runs on the caller's (so that concurrent single-threaded calls from several
+    // Python threads run side by side); more share a pool of that size.
     let pool = match threads {
         Some(0) => return Err(value_error("threads must be at least 1")),
+        Some(1) => None,
         Some(t) => Some(pool(t)?),
         None => None,
     };
     let (sa, sb) = (&a.solid, &b.solid);
     let n = call.poses_b.poses.len();
-    let answers = py.detach(|| {
-        let run = || -> Vec<Answer> {
-            (0..n)
-                .into_par_iter()
-                .map(|i| answer(sa, sb, &call, i, None))
-                .collect()
-        };
-        match &pool {
-            Some(p) => p.install(run),
-            None => run(),
-        }
+    let one = |i| answer(sa, sb, &call, i, None);
+    let answers = py.detach(|| match (&pool, threads) {
+        (_, Some(1)) => (0..n).map(one).collect(),
+        (Some(p), _) => p.install(|| (0..n).into_par_iter().map(one).collect()),
+        (None, _) => (0..n).into_par_iter().map(one).collect::<Vec<Answer>>(),
     });
     arrays(py, answers, call.poses_b.single)
 }
