@@ -4,7 +4,7 @@
 //! its error prefixed with where it was given (`poses[3]: ...`).
 
 use nalgebra::Isometry3;
-use numpy::ndarray::Axis;
+use numpy::ndarray::{Ix2, Ix3};
 use numpy::PyReadonlyArrayDyn;
 use pyo3::PyResult;
 use revdist::request::{pose_from_matrix, pose_from_quaternion};
@@ -33,10 +33,16 @@ pub fn read(name: &str, array: &PyReadonlyArrayDyn<'_, f64>) -> PyResult<Poses> 
             single: true,
         }),
         [_, 7] => {
-            let poses = view
-                .axis_iter(Axis(0))
+            let rows = view
+                .into_dimensionality::<Ix2>()
+                .map_err(|e| value_error(format!("{name}: {e}")))?;
+            let poses = rows
+                .outer_iter()
                 .enumerate()
-                .map(|(i, row)| row7(name, row.iter(), Some(i)))
+                .map(|(i, row)| match row.as_slice() {
+                    Some(r) => row7(name, r.iter(), Some(i)),
+                    None => row7(name, row.iter(), Some(i)),
+                })
                 .collect::<PyResult<_>>()?;
             Ok(Poses {
                 poses,
@@ -44,8 +50,11 @@ pub fn read(name: &str, array: &PyReadonlyArrayDyn<'_, f64>) -> PyResult<Poses> 
             })
         }
         [_, 4, 4] => {
-            let poses = view
-                .axis_iter(Axis(0))
+            let ms = view
+                .into_dimensionality::<Ix3>()
+                .map_err(|e| value_error(format!("{name}: {e}")))?;
+            let poses = ms
+                .outer_iter()
                 .enumerate()
                 .map(|(i, m)| matrix(name, m.iter(), Some(i)))
                 .collect::<PyResult<_>>()?;

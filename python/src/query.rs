@@ -29,8 +29,46 @@ use crate::solid::PySolid;
 /// `width_limit_code` array (the command line's `"width_limit"` strings).
 pub const WIDTH_LIMIT_NAMES: [&str; 4] = ["met", "budget", "rounding", "leaves"];
 
-/// One pose's answer, or its error message.
-type Answer = Result<(Distance, u8), String>;
+/// One pose's answer, compact (what the arrays hold), or the pose's error.
+type Answer = Result<Row, String>;
+
+/// The fields of a `Distance` the result arrays hold.
+struct Row {
+    value: f64,
+    lower: f64,
+    upper: f64,
+    point_a: [f64; 3],
+    point_b: [f64; 3],
+    /// node pairs, leaf bounds, leaf tests, subdivided pairs.
+    counters: [u64; 4],
+    overlap: bool,
+    budget_exhausted: bool,
+    closed_form: bool,
+    /// Index into [`WIDTH_LIMIT_NAMES`].
+    width_limit: u8,
+}
+
+impl Row {
+    fn new(d: &Distance, width_limit: u8) -> Row {
+        Row {
+            value: d.value,
+            lower: d.lower,
+            upper: d.upper,
+            point_a: [d.point_a.x, d.point_a.y, d.point_a.z],
+            point_b: [d.point_b.x, d.point_b.y, d.point_b.z],
+            counters: [
+                d.stats.node_pairs as u64,
+                d.stats.leaf_bounds as u64,
+                d.stats.leaf_tests as u64,
+                d.stats.subdivided_pairs as u64,
+            ],
+            overlap: d.overlap,
+            budget_exhausted: d.stats.budget_exhausted,
+            closed_form: d.stats.closed_forms > 0,
+            width_limit,
+        }
+    }
+}
 
 /// What a call asks, checked: the poses of A (one, or one per pose of B) and of B, and the
 /// query options.
@@ -80,17 +118,25 @@ impl Call {
     }
 }
 
-/// The query of pose `i`: A at its pose, B at its pose, with or without a warm start.
-fn answer(a: &Solid, b: &Solid, call: &Call, i: usize, cache: Option<&mut QueryCache>) -> Answer {
-    let a = a.with_pose(call.pose_a(i));
-    let b = b.with_pose(call.poses_b.poses[i]);
+/// The query of pose `i` on `pair`, copies of the two solids whose poses are set here (the
+/// same as `Solid::with_pose`, without touching the shared trees' reference counts), with or
+/// without a warm start.
+fn answer(
+    pair: &mut (Solid, Solid),
+    call: &Call,
+    i: usize,
+    cache: Option<&mut QueryCache>,
+) -> Answer {
+    let (a, b) = pair;
+    a.pose = call.pose_a(i);
+    b.pose = call.poses_b.poses[i];
     let d = match cache {
-        Some(cache) => try_distance_cached(&a, &b, &call.opts, cache),
-        None => try_distance(&a, &b, &call.opts),
+        Some(cache) => try_distance_cached(a, b, &call.opts, cache),
+        None => try_distance(a, b, &call.opts),
     }
     .map_err(|e| format!("poses[{i}]: {e}"))?;
-    let limit = width_limit(&a, &b, &call.opts, &d) as u8;
-    Ok((d, limit))
+    let limit = width_limit(a, b, &call.opts, &d) as u8;
+    Ok(Row::new(&d, limit))
 }
 
 /// The answers as numpy arrays in a dict (the Python layer wraps them in `DistanceResult`),
@@ -115,20 +161,20 @@ fn arrays<'py>(
     let mut budget = Vec::with_capacity(n);
     let mut closed = Vec::with_capacity(n);
     for a in answers {
-        let (d, code) = a.map_err(value_error)?;
-        value.push(d.value);
-        lower.push(d.lower);
-        upper.push(d.upper);
-        point_a.extend([d.point_a.x, d.point_a.y, d.point_a.z]);
-        point_b.extend([d.point_b.x, d.point_b.y, d.point_b.z]);
-        overlap.push(d.overlap);
-        limit.push(code);
-        node_pairs.push(d.stats.node_pairs as u64);
-        leaf_bounds.push(d.stats.leaf_bounds as u64);
-        leaf_tests.push(d.stats.leaf_tests as u64);
-        subdivided.push(d.stats.subdivided_pairs as u64);
-        budget.push(d.stats.budget_exhausted);
-        closed.push(d.stats.closed_forms > 0);
+        let r = a.map_err(value_error)?;
+        value.push(r.value);
+        lower.push(r.lower);
+        upper.push(r.upper);
+        point_a.extend(r.point_a);
+        point_b.extend(r.point_b);
+        overlap.push(r.overlap);
+        limit.push(r.width_limit);
+        node_pairs.push(r.counters[0]);
+        leaf_bounds.push(r.counters[1]);
+        leaf_tests.push(r.counters[2]);
+        subdivided.push(r.counters[3]);
+        budget.push(r.budget_exhausted);
+        closed.push(r.closed_form);
     }
     let points = |v: Vec<f64>| Array2::from_shape_vec((n, 3), v).map_err(value_error);
     let out = PyDict::new(py);
@@ -202,13 +248,17 @@ pub fn distance<'py>(
         Some(t) => Some(pool(t)?),
         None => None,
     };
-    let (sa, sb) = (&a.solid, &b.solid);
     let n = call.poses_b.poses.len();
-    let one = |i| answer(sa, sb, &call, i, None);
+    let fresh = || (a.solid.clone(), b.solid.clone());
+    let one = |pair: &mut (Solid, Solid), i| answer(pair, &call, i, None);
+    let all = || -> Vec<Answer> { (0..n).into_par_iter().map_init(fresh, one).collect() };
     let answers = py.detach(|| match (&pool, threads) {
-        (_, Some(1)) => (0..n).map(one).collect(),
-        (Some(p), _) => p.install(|| (0..n).into_par_iter().map(one).collect()),
-        (None, _) => (0..n).into_par_iter().map(one).collect::<Vec<Answer>>(),
+        (_, Some(1)) => {
+            let mut pair = fresh();
+            (0..n).map(|i| one(&mut pair, i)).collect()
+        }
+        (Some(p), _) => p.install(all),
+        (None, _) => all(),
     });
     arrays(py, answers, call.poses_b.single)
 }
@@ -258,9 +308,10 @@ impl PyPair {
         )?;
         let answers = py.detach(|| {
             let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
+            let mut pair = (self.a.clone(), self.b.clone());
             let mut out = Vec::with_capacity(call.poses_b.poses.len());
             for i in 0..call.poses_b.poses.len() {
-                let r = answer(&self.a, &self.b, &call, i, Some(&mut cache));
+                let r = answer(&mut pair, &call, i, Some(&mut cache));
                 let failed = r.is_err();
                 out.push(r);
                 if failed {
