@@ -13,6 +13,9 @@ use revdist::tessellate::{tessellate, TessellateOptions, VertexPlacement};
 
 use crate::errors::{not_found, value_error};
 
+/// A mesh as numpy arrays: vertices (n, 3) and triangles (m, 3).
+type Mesh<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
+
 /// Default bound of the biarc trees, the command line's (`revdist distance --eps`).
 pub const DEFAULT_EPS: f64 = 1e-4;
 
@@ -99,12 +102,7 @@ impl PySolid {
     /// `eps` (`revdist tessellate`): `V` float64 `(n, 3)`, `F` int64 `(m, 3)`.
     /// `on_surface=True` puts every vertex on the biarc surface (more triangles).
     #[pyo3(signature = (eps, on_surface = false))]
-    fn tessellate<'py>(
-        &self,
-        py: Python<'py>,
-        eps: f64,
-        on_surface: bool,
-    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
+    fn tessellate<'py>(&self, py: Python<'py>, eps: f64, on_surface: bool) -> PyResult<Mesh<'py>> {
         let profile = self
             .solid
             .profile
