@@ -154,7 +154,10 @@ def distance(
     refine : bool
         Refine the witness points on the exact NURBS surfaces.
     threads : int, optional
-        Worker threads (default: every core). Answers do not depend on it.
+        Worker threads (default: every core; concurrent calls share them). ``threads=1``
+        runs on the calling thread, so that several Python threads run side by side;
+        calls with the same ``threads=k > 1`` share one pool of k threads. Answers do not
+        depend on it.
 
     Returns
     -------

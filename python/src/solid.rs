@@ -59,10 +59,13 @@ impl PySolid {
     fn from_file(py: Python<'_>, path: std::path::PathBuf, eps: f64) -> PyResult<Self> {
         check_eps(eps).map_err(value_error)?;
         let spec = path.to_string_lossy().into_owned();
-        if !Path::new(&path).exists() {
-            return Err(not_found(format!("no profile file '{spec}'")));
-        }
-        let profile = read_profile_file(&spec).map_err(value_error)?;
+        let profile = read_profile_file(&spec).map_err(|e| {
+            if Path::new(&path).exists() {
+                value_error(e)
+            } else {
+                not_found(e)
+            }
+        })?;
         py.detach(|| Self::build(&spec, profile, eps))
     }
 

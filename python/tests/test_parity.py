@@ -99,6 +99,20 @@ def test_options_are_the_cli_options(cli):
     assert any(r.budget_exhausted)
 
 
+def test_a_profile_file_is_the_model_it_was_exported_from(cli, tmp_path, pawn_cup):
+    """`revdist export` writes a profile that reads back bit-identically: Solid.from_file
+    (and Solid.load of the path) give the built-in model's answers."""
+    path = tmp_path / "cup.toml"
+    subprocess.run([cli, "export", "cup", "--toml", str(path)], check=True, capture_output=True)
+    a, b = pawn_cup
+    poses = random_poses(np.random.default_rng(SEED + 2), 20, 1.0)
+    want = revdist.distance(a, b, poses)
+    for solid in (revdist.Solid.from_file(path, eps=1e-3), revdist.Solid.load(str(path), eps=1e-3)):
+        got = revdist.distance(a, solid, poses)
+        assert np.array_equal(bits(got.lower), bits(want.lower))
+        assert np.array_equal(bits(got.point_b), bits(want.point_b))
+
+
 def cli_error(cli, request):
     (answer,) = run_batch(cli, [request])
     return answer["error"]
@@ -129,7 +143,7 @@ def test_errors_carry_the_cli_messages(cli, tmp_path, pawn_cup):
         with pytest.raises(ValueError) as e:
             load(str(bad))
         assert str(e.value) == msg
-    with pytest.raises(FileNotFoundError):
+    with pytest.raises(FileNotFoundError, match="cannot read .*missing.toml"):
         revdist.Solid.from_file(str(tmp_path / "missing.toml"))
     # eps and tolerance.
     msg = cli_error(cli, {"a": "pawn", "b": "cup", "eps": -1.0})
