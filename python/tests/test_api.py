@@ -159,3 +159,18 @@ def test_tessellation_is_a_closed_certified_mesh():
         assert np.all(np.abs(np.linalg.norm(pts - centre, axis=1) - 0.75) <= eps)
     with pytest.raises(ValueError, match="eps must be positive and finite"):
         s.tessellate(-1.0)
+
+
+def test_the_stubs_cover_the_public_names():
+    """Every public name has a type stub, and every stubbed method exists."""
+    import ast
+    import pathlib
+
+    stub = ast.parse((pathlib.Path(revdist.__file__).parent / "__init__.pyi").read_text())
+    names = {n.name for n in stub.body if isinstance(n, (ast.ClassDef, ast.FunctionDef))}
+    names |= {t.id for n in stub.body if isinstance(n, ast.AnnAssign) for t in [n.target]}
+    assert set(revdist.__all__) <= names
+    for cls in (n for n in stub.body if isinstance(n, ast.ClassDef)):
+        for f in cls.body:
+            if isinstance(f, ast.FunctionDef) and not f.name.startswith("__"):
+                assert hasattr(getattr(revdist, cls.name), f.name), (cls.name, f.name)
