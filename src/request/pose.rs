@@ -159,4 +159,25 @@ mod tests {
             "matrix entry [1][2] is NaN, not a finite number"
         );
     }
+
+    /// Poses arrive as JSON text (the CLI, batch lines) and must parse to the same double
+    /// as Rust's correctly rounded `str::parse`, so that the CLI, a batch line and a Python
+    /// array give the same query bit for bit (serde_json's default fast path may be one ulp
+    /// off on 17-digit decimals; the workspace enables `float_roundtrip`).
+    #[test]
+    fn json_numbers_parse_to_the_nearest_double() {
+        let mut rng = crate::test_rng::SplitMix64(0x5eed_f10a);
+        for _ in 0..20_000 {
+            let x = rng.range(-1.0, 1.0) * 10f64.powf(rng.range(-30.0, 30.0));
+            for text in [
+                format!("{x:.16e}"),
+                format!("{x}"),
+                format!("{:.17}", x * 1e-3),
+            ] {
+                let exact: f64 = text.parse().unwrap();
+                let json: f64 = serde_json::from_str(&text).unwrap();
+                assert_eq!(json.to_bits(), exact.to_bits(), "{text}");
+            }
+        }
+    }
 }
