@@ -13,8 +13,9 @@
 //!   per leaf triangle) and slow on big meshes, so it runs on the first `--parry-poses` poses
 //!   of each row only (the table says how many).
 //! * Convex table: the convex solids of revolution (sphere, capsule, cylinder, cone; every
-//!   unordered pair) with revdist's default options beside coal's and parry3d's exact
-//!   primitives (GJK), on the same poses.
+//!   unordered pair) with revdist's default options and its convex path (`QueryOptions {
+//!   convex_path: true, .. }`) beside coal's and parry3d's exact primitives (GJK), on the
+//!   same poses.
 //!
 //! All methods run *blocked* (each alone over the poses of a row, the usual benchmark loop),
 //! one query at a time on one thread; coal times each query inside its own process. Every
@@ -41,7 +42,7 @@ use experiments::peers::parry::{self, ParryShape};
 use experiments::plot::{grouped_bars, BarSeries};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::shapes::{diagonal, profile, query_tree_bytes};
-use experiments::stats::{human_bytes, median, time_each};
+use experiments::stats::{human_bytes, median, time_each, us};
 use experiments::table::Table;
 use nalgebra::Isometry3;
 use revdist::profile::Profile;
@@ -69,6 +70,10 @@ const PAPER_POSES: usize = 1000;
 /// traversal takes 6 ms at 2k triangles and 340 ms at 33k (shared/notes/peers.md), so this
 /// cap keeps the main job's step near a minute. `--parry-poses` changes it.
 const DEFAULT_PARRY_POSES: usize = 8;
+/// parry3d's time budget per mesh row in a default run, seconds: it stops after the pose
+/// that exceeds it (at least one pose; at 110k triangles one query takes seconds). Chosen so
+/// that parry3d's share of the main job's step stays under a minute over 22 rows.
+const PARRY_ROW_BUDGET_S: f64 = 2.0;
 /// Poses per convex pair of a default run.
 const CONVEX_POSES: usize = 100;
 /// revdist's eps for the convex solids (lines and circular arcs are exact biarcs, so the
@@ -164,8 +169,8 @@ struct ConvexRow {
     pair: String,
     poses: usize,
     rev_us: f64,
-    /// Hook for revdist with `QueryOptions { convex_path: true, .. }` (the convex branch): `None`
-    /// on a revdist without that option.
+    /// revdist with `QueryOptions { convex_path: true, .. }` (off by default today; the convex
+    /// work makes it the default).
     rev_convex_us: Option<f64>,
     coal: Result<f64, String>,
     parry_us: f64,
@@ -197,6 +202,8 @@ fn run(args: Args) -> DriverResult {
         .parry_poses
         .unwrap_or(c.paper.pick(DEFAULT_PARRY_POSES, PAPER_POSES))
         .min(poses);
+    // No time budget for parry3d at paper scale or when its pose count is given.
+    let parry_budget = (!c.paper.on && args.parry_poses.is_none()).then_some(PARRY_ROW_BUDGET_S);
     let eps_list = c.eps.or(c.paper.pick(&DEFAULT_EPS[..], &PAPER_EPS[..]));
     let pairs = c.pairs.or(&model_pairs(DEFAULT_PAIRS));
     let seed = c.seed.or(CLOSE_SEED);
@@ -224,7 +231,14 @@ fn run(args: Args) -> DriverResult {
         let pair = format!("{na}-{nb}");
         let placed = close_poses(&pa, &pb, poses, CLOSE_GAPS, pair_seed(seed, &pair), || {})?;
         for &eps in &eps_list {
-            let row = mesh_row(&pair, (&pa, &pb), eps, &placed, parry_poses, &mut coal)?;
+            let row = mesh_row(
+                &pair,
+                (&pa, &pb),
+                eps,
+                &placed,
+                (parry_poses, parry_budget),
+                &mut coal,
+            )?;
             let (name, t) = row.fastest();
             eprintln!(
                 "{pair} eps {eps:.0e}: revdist {:.1} us, fastest peer {name} {t:.1} us, ratio \
@@ -248,6 +262,10 @@ fn run(args: Args) -> DriverResult {
         &[
             ("poses", poses.to_string()),
             ("parry_poses", parry_poses.to_string()),
+            (
+                "parry_row_budget_s",
+                parry_budget.map_or("none".into(), |b| b.to_string()),
+            ),
             ("convex_poses", convex_poses.to_string()),
             ("eps", format!("{eps_list:?}")),
             ("convex_eps", format!("{CONVEX_EPS:e}")),
@@ -272,7 +290,8 @@ fn run(args: Args) -> DriverResult {
         out.join("peers_convex.csv"),
         prov.csv_preamble() + &convex_csv().csv_text(&convex),
     )?;
-    let md = markdown(&rows, &convex, parry_poses, &coal_version) + &prov.markdown_footer();
+    let md = markdown(&rows, &convex, (parry_poses, parry_budget), &coal_version)
+        + &prov.markdown_footer();
     std::fs::write(out.join("peers.md"), &md)?;
     figure(&out.join("peers.svg"), &rows)?;
     print!("{md}");
@@ -296,7 +315,7 @@ fn mesh_row(
     (pa, pb): (&Arc<Profile>, &Arc<Profile>),
     eps: f64,
     poses: &[Isometry3<f64>],
-    parry_poses: usize,
+    (parry_poses, parry_budget): (usize, Option<f64>),
     coal: &mut Result<CoalPeer, String>,
 ) -> Res<Row> {
     let same = pa.name() == pb.name();
@@ -421,13 +440,21 @@ fn mesh_row(
         Some(ParryShape::mesh(&mb)?)
     };
     let qbr = qb.as_ref().unwrap_or(&qa);
-    let pp = &poses[..parry_poses.min(poses.len())];
-    let parry_pose: Vec<_> = pp.iter().map(parry::pose).collect();
-    let mut parry_d = Vec::with_capacity(pp.len());
-    let times = time_each(&parry_pose, |p| {
+    let parry_pose: Vec<_> = poses[..parry_poses.min(poses.len())]
+        .iter()
+        .map(parry::pose)
+        .collect();
+    let mut parry_d = Vec::with_capacity(parry_pose.len());
+    let mut times = Vec::with_capacity(parry_pose.len());
+    for p in &parry_pose {
+        let t = Instant::now();
         parry_d.push(qa.distance(qbr, p)?);
-        Ok::<(), Box<dyn std::error::Error>>(())
-    })?;
+        times.push(us(t.elapsed()));
+        if parry_budget.is_some_and(|b| times.iter().sum::<f64>() > b * 1e6) {
+            break;
+        }
+    }
+    let pp = &poses[..times.len()];
     for (i, d) in parry_d.iter().enumerate() {
         check("parry3d", i, *d);
     }
@@ -480,8 +507,24 @@ fn convex_row(
         Ok::<(), Box<dyn std::error::Error>>(())
     })?;
     let rev_us = median(&times);
+    // revdist's convex path (GJK on the biarc solids, off by default): its own intervals,
+    // cross-checked against coal like the default's.
+    let fast = QueryOptions {
+        convex_path: true,
+        ..QueryOptions::default()
+    };
+    let answers_fast: Vec<Distance> = poses
+        .iter()
+        .map(|p| distance(&sa, &sb.with_pose(*p), &fast))
+        .collect();
+    let times = time_each(poses.iter().map(|p| sb.with_pose(*p)), |s| {
+        std::hint::black_box(distance(&sa, &s, &fast));
+        Ok::<(), Box<dyn std::error::Error>>(())
+    })?;
+    let rev_convex_us = Some(median(&times));
     let max_width = answers
         .iter()
+        .chain(&answers_fast)
         .map(|d| d.upper - d.lower)
         .fold(0.0, f64::max);
     let (ka, kb) = (
@@ -497,13 +540,15 @@ fn convex_row(
             for (i, x) in ans.iter().enumerate() {
                 let slack = COAL_GJK_TOLERANCE
                     * (1.0 + x.distance.abs() + ka.swept_radius() + kb.swept_radius());
-                if !agrees(&answers[i], x.distance, slack, &poses[i], size) {
-                    violations += 1;
-                    eprintln!(
-                        "VIOLATION {pair} pose {i}: coal GJK {:e} outside revdist [{:e}, {:e}] \
-                         widened by coal's GJK error bound {slack:e}",
-                        x.distance, answers[i].lower, answers[i].upper
-                    );
+                for (opts, ans) in [("default", &answers[i]), ("convex path", &answers_fast[i])] {
+                    if !agrees(ans, x.distance, slack, &poses[i], size) {
+                        violations += 1;
+                        eprintln!(
+                            "VIOLATION {pair} pose {i}: coal GJK {:e} outside revdist ({opts}) \
+                             [{:e}, {:e}] widened by coal's GJK error bound {slack:e}",
+                            x.distance, ans.lower, ans.upper
+                        );
+                    }
                 }
             }
             Ok(median(&ans.iter().map(|x| x.us).collect::<Vec<_>>()))
@@ -530,7 +575,7 @@ fn convex_row(
         pair,
         poses: poses.len(),
         rev_us,
-        rev_convex_us: None,
+        rev_convex_us,
         coal: coal_us,
         parry_us: median(&times),
         parry_excess,
@@ -598,6 +643,10 @@ fn convex_csv() -> Table<'static, ConvexRow> {
         .csv("fastest_peer", |r| r.fastest().0.into())
         .csv("ratio_fastest_peer_over_rev", |r| {
             format!("{:.3}", r.fastest().1 / r.rev_us)
+        })
+        .csv("ratio_fastest_peer_over_rev_convex_path", |r| {
+            r.rev_convex_us
+                .map_or_else(String::new, |c| format!("{:.3}", r.fastest().1 / c))
         })
         .csv("parry_max_excess", |r| format!("{:.3e}", r.parry_excess))
         .csv("rev_max_width", |r| format!("{:.4e}", r.max_width))
@@ -670,7 +719,13 @@ fn convex_md(coal_note: &str) -> Table<'static, ConvexRow> {
         .markdown("parry3d", |r| format!("{:.2}", r.parry_us))
         .right()
         .markdown("fastest peer", |r| r.fastest().0.into())
-        .markdown("ratio", |r| format!("{:.2}", r.fastest().1 / r.rev_us))
+        .markdown("ratio default / convex path", |r| {
+            let f = r.fastest().1;
+            match r.rev_convex_us {
+                Some(c) => format!("{:.2} / {:.2}", f / r.rev_us, f / c),
+                None => format!("{:.2} / -", f / r.rev_us),
+            }
+        })
         .right()
         .markdown("parry3d max excess", |r| format!("{:.1e}", r.parry_excess))
         .right()
@@ -680,7 +735,12 @@ fn convex_md(coal_note: &str) -> Table<'static, ConvexRow> {
         .right()
 }
 
-fn markdown(rows: &[Row], convex: &[ConvexRow], parry_poses: usize, coal: &str) -> String {
+fn markdown(
+    rows: &[Row],
+    convex: &[ConvexRow],
+    (parry_poses, parry_budget): (usize, Option<f64>),
+    coal: &str,
+) -> String {
     let note = match rows.first().map(|r| &r.coal) {
         Some(Err(e)) => e.clone(),
         _ => "coal missing: run scripts/deps.sh".into(),
@@ -694,11 +754,15 @@ fn markdown(rows: &[Row], convex: &[ConvexRow], parry_poses: usize, coal: &str) 
          when A = B). Mesh peers get the same certified mesh (balanced layout, two-sided \
          Hausdorff bound <= eps). parry3d's TriMesh-TriMesh distance is one-sided (best-first \
          over mesh 1's BVH against mesh 2's whole AABB, then one BVH query into mesh 2 per \
-         leaf triangle) and runs on the first {parry_poses} poses of each row only. Ratio = \
+         leaf triangle) and runs on the first {parry_poses} poses of each row only{}. Ratio = \
          fastest peer's median / revdist's (> 1: revdist faster). OCCT: hook for the \
          OpenCASCADE cross-check's time per query (not measured here). Violations: a peer's \
          distance outside revdist's certified interval widened by h_a + h_b.\n\n",
-        CLOSE_GAPS.0, CLOSE_GAPS.1
+        CLOSE_GAPS.0,
+        CLOSE_GAPS.1,
+        parry_budget.map_or(String::new(), |b| format!(
+            ", stopping after the pose that exceeds {b} s of its queries (the count in brackets)"
+        ))
     ));
     s.push_str(&mesh_md(&note).markdown_text(rows));
     s.push_str(&format!(
@@ -707,8 +771,9 @@ fn markdown(rows: &[Row], convex: &[ConvexRow], parry_poses: usize, coal: &str) 
          widened by coal's GJK error bound tol (1 + d + swept radii), tol = \
          {COAL_GJK_TOLERANCE:e} (its default convergence test), or parry3d's off by more than \
          {PARRY_GROSS_EXCESS:e}; parry3d states no tolerance, its largest excess over \
-         revdist's interval is listed. revdist convex path: the column for \
-         `QueryOptions {{ convex_path: true, .. }}` where revdist has it.\n\n"
+         revdist's interval is listed. revdist convex path: `QueryOptions {{ convex_path: true, \
+         .. }}` (GJK on the biarc solids; coal is checked against its intervals too). Ratio: \
+         fastest peer's median / revdist's (default / convex path; > 1: revdist faster).\n\n"
     ));
     s.push_str(&convex_md(&note).markdown_text(convex));
     s
