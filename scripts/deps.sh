@@ -32,7 +32,9 @@ coal_dir="$root/.peers/coal"
 if [ ! -f "$coal_dir/cmeel.prefix/lib/libcoal.so" ] || [ ! -d "$coal_dir/libcoal-$coal_version.dist-info" ]; then
   echo "revdist: installing coal $coal_version (PyPI libcoal wheel) into $coal_dir" >&2
   rm -rf "$coal_dir.tmp"
-  if ! python3 -m pip install --disable-pip-version-check --no-warn-script-location --root-user-action=ignore -q \
+  py=/usr/bin/python3  # Debian's, with the python3-pip installed above (not a pyenv shim's)
+  [ -x "$py" ] || py=python3
+  if ! "$py" -m pip install --disable-pip-version-check --no-warn-script-location --root-user-action=ignore -q \
       --target "$coal_dir.tmp" "libcoal==$coal_version"; then
     rm -rf "$coal_dir.tmp"
     echo "revdist: error: pip could not install libcoal==$coal_version (network?); the peers benchmark needs it" >&2
