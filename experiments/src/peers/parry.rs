@@ -47,17 +47,7 @@ impl ParryShape {
             .iter()
             .map(|v| Vector::new(v.x, v.y, v.z))
             .collect();
-        let indices = m
-            .triangles
-            .iter()
-            .map(|t| -> Res<[u32; 3]> {
-                Ok([
-                    u32::try_from(t[0])?,
-                    u32::try_from(t[1])?,
-                    u32::try_from(t[2])?,
-                ])
-            })
-            .collect::<Res<Vec<_>>>()?;
+        let indices = m.triangles.clone();
         let mesh = TriMesh::new(vertices, indices)
             .map_err(|e| format!("parry3d rejected the mesh: {e:?}"))?;
         let build = start.elapsed();
