@@ -84,11 +84,12 @@ impl Primitive {
 mod tests {
     use super::*;
     use revdist::solid::Solid;
+    use std::f64::consts::FRAC_PI_2;
     use std::sync::Arc;
 
-    /// Each primitive is the model's solid: same bounding box of the profile, and points on
-    /// the primitive's meridian lie on the revdist solid's boundary (distance to a unit ball
-    /// placed there is 0 within the certified interval).
+    /// Each primitive is the model's solid: same bounding box of the profile, and a small ball
+    /// just outside the primitive's meridian is just outside the revdist solid (a cone
+    /// standing the wrong way up, or a wrong radius, puts it inside or too far).
     #[test]
     fn primitives_match_the_models() {
         for name in CONVEX_MODELS {
@@ -105,19 +106,25 @@ mod tests {
                 (b.min.y - lo).abs() < 1e-12 && (b.max.y - hi).abs() < 1e-12,
                 "{name}"
             );
-            // Meridian points: a tiny ball touching the surface from outside at (rho + g, z)
-            // must be at distance g from the solid.
+            // Meridian points: a small ball (radius `R`, centred on its frame's origin) whose
+            // centre is `gap + R` out from the primitive's side point (rho, z) is at most `gap`
+            // from the solid, and apart from it (the solids are convex and the centre is
+            // outside).
+            const R: f64 = 0.01;
+            let ball = revdist::profile::Profile::new(
+                "probe",
+                vec![
+                    revdist::models::primitives::arc([0.0, 0.0], R, -FRAC_PI_2, FRAC_PI_2).unwrap(),
+                ],
+            )
+            .unwrap();
             let solid = Solid::from_profile(Arc::new(profile), 1e-9).unwrap();
-            let ball = Arc::new(revdist::models::model("sphere").unwrap());
-            let probe = Solid::from_profile(ball, 1e-9).unwrap();
+            let probe = Solid::from_profile(Arc::new(ball), 1e-9).unwrap();
             for k in 1..8 {
                 let z = lo + (hi - lo) * k as f64 / 8.0;
                 let rho = p.radius_at(z).unwrap();
-                // The probe ball (radius 0.75, centre at z 0.75 in its frame) placed so that
-                // its nearest point is at distance 0.1 from the primitive's side point.
                 let gap = 0.1;
-                let centre = nalgebra::Vector3::new(rho + gap + 0.75, 0.0, z - 0.75);
-                let pose = nalgebra::Isometry3::translation(centre.x, centre.y, centre.z);
+                let pose = nalgebra::Isometry3::translation(rho + gap + R, 0.0, z);
                 let d = revdist::query::distance(
                     &solid,
                     &probe.with_pose(pose),
