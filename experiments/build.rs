@@ -42,7 +42,7 @@ fn main() {
 fn build(prefix: &Path, source: &Path, lib: &Path) -> Result<PathBuf, String> {
     if !lib.exists() || !prefix.join("include/coal/distance.h").exists() {
         return Err(format!(
-            "coal missing (no {}): run scripts/deps.sh",
+            "coal missing: run scripts/deps.sh (no {})",
             lib.display()
         ));
     }
@@ -61,12 +61,16 @@ fn build(prefix: &Path, source: &Path, lib: &Path) -> Result<PathBuf, String> {
         .arg("-o")
         .arg(&exe)
         .status()
-        .map_err(|e| format!("coal found but the C++ compiler '{cxx}' did not start: {e}"))?;
+        .map_err(|e| {
+            format!(
+                "coal missing: run scripts/deps.sh (the C++ compiler '{cxx}' did not start: {e})"
+            )
+        })?;
     if !status.success() {
         return Err(format!(
-            "coal found at {} but {} did not compile ({status}); see the build log",
-            prefix.display(),
-            source.display()
+            "coal missing: {} did not compile against {} ({status}); see the build log",
+            source.display(),
+            prefix.display()
         ));
     }
     Ok(exe)
