@@ -3,23 +3,46 @@
 # Core library: nothing (pure Rust). verify/: GMP + MPFR for exact arithmetic (rug with system libs),
 # and the C++ baselines bridged with cxx (verify/build.rs, cpp/): FCL 0.7 (pulls in octomap),
 # libccd 2.1, CGAL 5.5 (header-only; pulls in Boost) and Eigen 3. python/ (scripts/python-test.sh):
-# Python 3 with its venv and pip modules.
+# Python 3 with its venv and pip modules. experiments/' peers benchmark: coal 3 from PyPI's libcoal
+# wheel (C++ headers and libcoal.so under cmeel.prefix/), installed with pip into .peers/coal in the
+# checkout (git-ignored; nothing system-wide).
 # Usage: scripts/deps.sh [extra packages...]
 set -euo pipefail
 packages=(pkg-config m4 libgmp-dev libmpfr-dev libfcl-dev libccd-dev libcgal-dev libeigen3-dev
-  python3-venv python3-pip "$@")
+  python3 python3-venv python3-pip "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "revdist: installing missing packages: ${missing[*]}" >&2
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then
+    sudo_cmd=(sudo)
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-echo "revdist: installing missing packages: ${missing[*]}" >&2
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then
-  sudo_cmd=(sudo)
+
+# coal for the peers benchmark (issue 28): experiments/build.rs compiles cpp/coal/coal_peer.cc
+# against it. About 350 MB with its cmeel dependencies (Boost, assimp, octomap, qhull, zlib).
+coal_version=3.0.3
+root=$(cd "$(dirname "$0")/.." && pwd)
+coal_dir="$root/.peers/coal"
+if [ ! -f "$coal_dir/cmeel.prefix/lib/libcoal.so" ] || [ ! -d "$coal_dir/libcoal-$coal_version.dist-info" ]; then
+  echo "revdist: installing coal $coal_version (PyPI libcoal wheel) into $coal_dir" >&2
+  rm -rf "$coal_dir.tmp"
+  py=/usr/bin/python3  # Debian's, with the python3-pip installed above (not a pyenv shim's)
+  [ -x "$py" ] || py=python3
+  if ! "$py" -m pip install --disable-pip-version-check --no-warn-script-location --root-user-action=ignore -q \
+      --target "$coal_dir.tmp" "libcoal==$coal_version"; then
+    rm -rf "$coal_dir.tmp"
+    echo "revdist: error: pip could not install libcoal==$coal_version (network?); the peers benchmark needs it" >&2
+    exit 1
+  fi
+  rm -rf "$coal_dir"
+  mv "$coal_dir.tmp" "$coal_dir"
+  # The shim's build script watches its source: a new coal is picked up by the next build.
+  touch "$root/cpp/coal/coal_peer.cc"
 fi
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

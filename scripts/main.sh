@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: regenerates every figure and table under figures/ (issue 13), revdist and the
-# real baselines (FCL, libccd, CGAL) measured in the same run.
+# real baselines (FCL, libccd, CGAL) and peers (coal, parry3d) measured in the same run.
 #
 #   bash scripts/main.sh           # default scale: about 8 minutes of runs on 2 cores (15 at most)
 #   bash scripts/main.sh --paper   # paper scale (50,000 motion frames, 1,000 poses per pair, ...): hours
@@ -46,6 +46,7 @@ step bvh_tables   $bin/bvh_tables --out "$out" "${paper[@]}"                  # 
 step query_times  $bin/accuracy_time --out "$out" "${query_poses[@]}"         # where a query spends its time
 step tails        $bin/tails --out "$out"                                      # tail of single-query times: 2,000 seeded queries, cold
 step fcl_bench    $bin/fcl_bench --out "$out" "${fcl_poses[@]}"               # speed ratios vs FCL on close poses
+step peers        $bin/peers --out "$out" "${paper[@]}"                       # FCL, coal, parry3d in one run; convex solids vs exact GJK
 step motion       $bin/motion --out "$out" "${paper[@]}"                      # Figure 12: 15 pairs in continuous motion
 step deforming    $bin/deforming --out "$out" "${paper[@]}"                   # Figure 8: static models vs M_t
 step pareto       $bin/pareto --out "$out" "${paper[@]}"                      # accuracy vs time, build, memory

@@ -4,6 +4,7 @@ pub mod args;
 pub mod baseline_mesh;
 pub mod cli;
 pub mod driver;
+pub mod peers;
 pub mod plot;
 pub mod poses;
 pub mod progress;
