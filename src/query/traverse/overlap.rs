@@ -143,11 +143,9 @@ fn overlap_point(
             return Some(x);
         }
     }
-    for th in thetas() {
-        if let Some(x) = deep_surface_sample(outer, inner, pos, inner.root, th, threshold) {
-            return Some(x);
-        }
-    }
+    // Interior points before the surface samples: a few hundred capped classifications
+    // that certify coincident and nested solids at once, where the surface samples (every
+    // lifted disk near the other surface, nothing skipped) visit the whole tree.
     for (m, clearance) in core_meridian_points(inner) {
         if clearance <= e_inner + slack {
             continue;
@@ -160,7 +158,7 @@ fn overlap_point(
             }
         }
     }
-    None
+    thetas().find_map(|th| deep_surface_sample(outer, inner, pos, inner.root, th, threshold))
 }
 
 /// A sample of [`surface_meridian_points`] under `inner`'s node `id`, lifted at `theta`,
