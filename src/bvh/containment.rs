@@ -214,7 +214,39 @@ mod tests {
             0.5,
         );
         assert!(point_in_profile(&ring, Point2::new(1.1, 0.1)).inside);
+        assert!(!point_in_profile_capped(&ring, Point2::new(0.5, 0.0), 1e-3).inside);
         assert!(!point_in_profile(&ring, Point2::new(0.5, 0.0)).inside);
         assert!(!point_in_profile(&ring, Point2::new(1.0, 0.5)).inside);
+    }
+
+    /// The capped descent against the flat loop over every piece (the tree without its
+    /// chain index): same classification, margin `min(exact, cap)`.
+    #[test]
+    fn capped_margin_matches_the_flat_loop() {
+        use crate::test_rng::SplitMix64;
+        let profile = crate::models::model("pawn_ff").unwrap();
+        let bt = crate::biarc::BiarcTree::build(&profile, 1e-4).unwrap();
+        let tree = QueryTree::from_biarc_tree(&bt, profile.kind());
+        assert!(!tree.node_ends.is_empty());
+        let mut flat = tree.clone();
+        flat.node_ends.clear();
+        let root = tree.nodes[tree.root as usize].bound;
+        let mut rng = SplitMix64(91);
+        for _ in 0..2000 {
+            let m = Point2::new(
+                rng.range(0.0, root.center.x + 1.5 * root.radius),
+                rng.range(
+                    root.center.y - 1.5 * root.radius,
+                    root.center.y + 1.5 * root.radius,
+                ),
+            );
+            let cap = 10f64.powf(rng.range(-6.0, 0.0));
+            let (got, want) = (
+                point_in_profile_capped(&tree, m, cap),
+                point_in_profile(&flat, m),
+            );
+            assert_eq!(got.inside, want.inside, "{m:?}");
+            assert_eq!(got.margin, want.margin.min(cap), "{m:?} cap {cap:e}");
+        }
     }
 }

@@ -408,3 +408,7 @@ pub fn nesting(
         _ => Verdict::Undecided,
     }
 }
+
+#[cfg(test)]
+#[path = "overlap_tests.rs"]
+mod tests;
