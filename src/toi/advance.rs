@@ -22,7 +22,6 @@ use crate::query::{
     try_distance_cached, Distance, QueryCache, QueryError, QueryOptions, Tolerance, TraversalStats,
 };
 use crate::solid::Solid;
-use nalgebra::Point3;
 
 /// Relative shortening of each advancement step: the step `(l - D) / L` is computed with
 /// three roundings (subtraction, division, the product with this factor), each at most a
