@@ -138,11 +138,13 @@ pub(crate) struct GradientJson {
 impl Output {
     /// Adds the gradient with respect to B's pose, B's frame origin at `origin_b`.
     pub(crate) fn with_gradient(mut self, d: &Distance, origin_b: &Vector3<f64>) -> Self {
-        self.gradient = d.gradient(&nalgebra::Point3::from(*origin_b)).map(|g| GradientJson {
-            normal: g.normal.into(),
-            translation: g.translation.into(),
-            rotation: g.rotation.into(),
-        });
+        self.gradient = d
+            .gradient(&nalgebra::Point3::from(*origin_b))
+            .map(|g| GradientJson {
+                normal: g.normal.into(),
+                translation: g.translation.into(),
+                rotation: g.rotation.into(),
+            });
         self
     }
 }
