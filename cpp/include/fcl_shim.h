@@ -59,8 +59,9 @@ FclDistanceOut fcl_mesh_distance(const FclMesh& a, rust::Slice<const double> pos
                                  const FclMesh& b, rust::Slice<const double> pose_b);
 
 // Continuous collision (fcl::continuousCollide) of two meshes of the same BV type, each moving
-// from its start to its end pose with FCL's interpolated motion (CCDM_LINEAR: constant linear
-// velocity of the origin, rotation about a constant axis), by `solver` with
+// from its start to its end pose with FCL's interpolated motion (fcl::InterpMotion with the
+// frame origin as reference point: constant linear velocity of the origin, rotation about a
+// constant axis along the shortest arc), by `solver` with
 // num_max_iterations = `max_iterations` and toc_err = `toc_err`. `supported` is false when FCL
 // returns its failure value -1 (unsupported pair); `collide` and `time_of_contact` are FCL's.
 FclToiOut fcl_mesh_continuous(const FclMesh& a, rust::Slice<const double> pose_a0,

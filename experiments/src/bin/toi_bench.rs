@@ -1,5 +1,7 @@
 //! Time of impact: revdist's certified search (`revdist::toi`) against FCL 0.7's continuous
-//! collision (`fcl::continuousCollide`, interpolated motion `CCDM_LINEAR`) on certified
+//! collision (`fcl::continuousCollide` on two `fcl::InterpMotion`s with the frame origin as
+//! reference point: the same motion as revdist's; the shim builds them because FCL 0.7's
+//! `Transform3` overload leaves the reference point uninitialised) on certified
 //! meshes of the same solids (`revdist::tessellate`, two-sided Hausdorff bound <= eps,
 //! FCL `BVHModel<OBBRSS>`), in one run, over the 15 pairs of the paper's five models and
 //! three eps.
