@@ -36,8 +36,10 @@ step() {  # step NAME COMMAND...: run, time, record
 
 if [ ${#paper[@]} -eq 0 ]; then
     fcl_poses=(--poses 100 --poses-1e-5 50); query_poses=(--poses 100); cross=(--poses 100)
+    toi_motions=(--motions 3)
 else
     fcl_poses=(--paper); query_poses=(--poses 1000); cross=(--poses 1000)
+    toi_motions=(--motions 30)
 fi
 
 step profiles     $bin/revdist figures --out "$out"                          # model profiles, M_t frames
@@ -47,6 +49,7 @@ step query_times  $bin/accuracy_time --out "$out" "${query_poses[@]}"         # 
 step tails        $bin/tails --out "$out"                                      # tail of single-query times: 2,000 seeded queries, cold
 step fcl_bench    $bin/fcl_bench --out "$out" "${fcl_poses[@]}"               # speed ratios vs FCL on close poses
 step peers        $bin/peers --out "$out" "${paper[@]}"                       # FCL, coal, parry3d in one run; convex solids vs exact GJK
+step toi_bench    $bin/toi_bench --out "$out" "${toi_motions[@]}"           # time of impact vs FCL continuous collision
 step motion       $bin/motion --out "$out" "${paper[@]}"                      # Figure 12: 15 pairs in continuous motion
 step deforming    $bin/deforming --out "$out" "${paper[@]}"                   # Figure 8: static models vs M_t
 step pareto       $bin/pareto --out "$out" "${paper[@]}"                      # accuracy vs time, build, memory

@@ -29,4 +29,5 @@ pub mod svg;
 pub mod tessellate;
 #[cfg(test)]
 pub(crate) mod test_rng;
+pub mod toi;
 pub mod tolerances;

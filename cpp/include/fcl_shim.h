@@ -21,7 +21,9 @@ namespace revdist_shim {
 
 // Shared types defined by the cxx-generated header (verify/src/baselines/mod.rs.h).
 struct FclDistanceOut;
+struct FclToiOut;
 enum class BvKind : std::uint8_t;
+enum class CcdSolverKind : std::uint8_t;
 
 // An FCL BVHModel (OBBRSS or RSS) built from one triangle mesh.
 class FclMesh {
@@ -55,5 +57,17 @@ std::uint64_t fcl_mesh_bytes(const FclMesh& mesh);
 // failed result (negative, NaN or DBL_MAX, which FCL uses for unsupported BV pairs).
 FclDistanceOut fcl_mesh_distance(const FclMesh& a, rust::Slice<const double> pose_a,
                                  const FclMesh& b, rust::Slice<const double> pose_b);
+
+// Continuous collision (fcl::continuousCollide) of two meshes of the same BV type, each moving
+// from its start to its end pose with FCL's interpolated motion (fcl::InterpMotion with the
+// frame origin as reference point: constant linear velocity of the origin, rotation about a
+// constant axis along the shortest arc), by `solver` with
+// num_max_iterations = `max_iterations` and toc_err = `toc_err`. `supported` is false when FCL
+// returns its failure value -1 (unsupported pair); `collide` and `time_of_contact` are FCL's.
+FclToiOut fcl_mesh_continuous(const FclMesh& a, rust::Slice<const double> pose_a0,
+                              rust::Slice<const double> pose_a1, const FclMesh& b,
+                              rust::Slice<const double> pose_b0,
+                              rust::Slice<const double> pose_b1, CcdSolverKind solver,
+                              std::uint64_t max_iterations, double toc_err);
 
 }  // namespace revdist_shim

@@ -140,4 +140,44 @@ FclDistanceOut fcl_mesh_distance(const FclMesh& a, rust::Slice<const double> pos
   return out;
 }
 
+FclToiOut fcl_mesh_continuous(const FclMesh& a, rust::Slice<const double> pose_a0,
+                              rust::Slice<const double> pose_a1, const FclMesh& b,
+                              rust::Slice<const double> pose_b0,
+                              rust::Slice<const double> pose_b1, CcdSolverKind solver,
+                              std::uint64_t max_iterations, double toc_err) {
+  if (a.impl().bv != b.impl().bv) {
+    throw std::invalid_argument("FCL continuous collision: both meshes must use the same BV type");
+  }
+  detail::check_pose(pose_a0, "FCL start pose A", true);
+  detail::check_pose(pose_a1, "FCL end pose A", true);
+  detail::check_pose(pose_b0, "FCL start pose B", true);
+  detail::check_pose(pose_b1, "FCL end pose B", true);
+  if (!(toc_err > 0.0) || !std::isfinite(toc_err) || max_iterations < 2) {
+    throw std::invalid_argument("FCL continuous collision: need toc_err > 0 and >= 2 iterations");
+  }
+  fcl::ContinuousCollisionRequestd request(
+      static_cast<std::size_t>(max_iterations), toc_err, fcl::CCDM_LINEAR, fcl::GST_LIBCCD,
+      solver == CcdSolverKind::Naive ? fcl::CCDC_NAIVE : fcl::CCDC_CONSERVATIVE_ADVANCEMENT);
+  fcl::ContinuousCollisionResultd result;
+  // The motions are built here rather than by the Transform3 overload of continuousCollide:
+  // that overload's InterpMotion(tf1, tf2) constructor leaves the reference point (the point
+  // moving on a straight line) uninitialised in FCL 0.7, and the (tf1, tf2, O) constructor
+  // does not compute the velocities; this one sets O = the frame origin and computes them.
+  const auto motion = [](rust::Slice<const double> p0, rust::Slice<const double> p1) {
+    const fcl::Transform3d t0 = to_transform(p0);
+    const fcl::Transform3d t1 = to_transform(p1);
+    return fcl::InterpMotion<double>(t0.linear(), t0.translation(), t1.linear(), t1.translation(),
+                                     fcl::Vector3d::Zero());
+  };
+  const fcl::InterpMotion<double> motion_a = motion(pose_a0, pose_a1);
+  const fcl::InterpMotion<double> motion_b = motion(pose_b0, pose_b1);
+  const double toc = fcl::continuousCollide(geometry(a.impl()), &motion_a, geometry(b.impl()),
+                                            &motion_b, request, result);
+  FclToiOut out;
+  out.supported = std::isfinite(toc) && toc >= 0.0;
+  out.collide = result.is_collide;
+  out.time_of_contact = result.time_of_contact;
+  return out;
+}
+
 }  // namespace revdist_shim

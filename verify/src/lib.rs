@@ -9,3 +9,4 @@ pub mod oracle;
 pub mod provenance;
 pub mod queries;
 pub mod random_profiles;
+pub mod toi;

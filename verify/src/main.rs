@@ -104,6 +104,24 @@ enum Command {
         #[arg(long, default_value_t = 0)]
         threads: usize,
     },
+    /// Certified time of impact (`revdist toi`) against the oracle sampled densely along
+    /// random motions (head-on, grazing, rotating, never touching, both moving) over the
+    /// built-in models and M_t frames; exit status 1 when any motion fails.
+    Toi {
+        #[arg(long, default_value_t = 2000)]
+        count: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Tree eps values to draw from, comma separated.
+        #[arg(long, value_delimiter = ',', default_values_t = verify::toi::DEFAULT_EPS.to_vec())]
+        eps: Vec<f64>,
+        /// Worker threads (default: all cores).
+        #[arg(long, default_value_t = 0)]
+        threads: usize,
+        /// Run one shard I/N (cases whose index is I modulo N).
+        #[arg(long, value_parser = parse_shard)]
+        shard: Option<(usize, usize)>,
+    },
     /// One query checked against the oracle: solids as built-in names or profile files,
     /// B placed by --pose-b as in `revdist distance`.
     Oracle {
@@ -181,6 +199,31 @@ fn main() {
             print!("{}", s.report(show));
             if s.violation_count() > 0 {
                 std::process::exit(1);
+            }
+        }
+        Command::Toi {
+            count,
+            seed,
+            eps,
+            threads,
+            shard,
+        } => {
+            let opts = verify::toi::Options {
+                count,
+                seed,
+                eps,
+                shard,
+                threads,
+            };
+            match verify::toi::run(&opts) {
+                Ok(r) => {
+                    print!("{}", r.summary());
+                    std::process::exit(i32::from(!r.failures.is_empty()));
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    std::process::exit(2);
+                }
             }
         }
         Command::MergeQueries { dirs } => match verify::queries::merge::merge(&dirs) {

@@ -10,7 +10,7 @@ pub(crate) mod batch;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Vector3};
 use revdist::query::traverse::width_limit;
 use revdist::query::{try_distance, Distance, QueryOptions};
 use revdist::request::{
@@ -117,6 +117,35 @@ pub(crate) struct Output {
     /// Wall time of the query in microseconds (`--timings`).
     #[serde(skip_serializing_if = "Option::is_none")]
     time_us: Option<f64>,
+    /// Derivatives of the distance with respect to B's pose (`Distance::gradient`):
+    /// present only when the solids are certified apart.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gradient: Option<GradientJson>,
+}
+
+/// `Distance::gradient` as written in JSON (A's frame).
+#[derive(Debug, Serialize)]
+pub(crate) struct GradientJson {
+    /// Unit normal (point_b - point_a) / |point_b - point_a|.
+    normal: [f64; 3],
+    /// d distance / d translation of B.
+    translation: [f64; 3],
+    /// d distance / d rotation vector of B about its frame origin.
+    rotation: [f64; 3],
+}
+
+impl Output {
+    /// Adds the gradient with respect to B's pose, B's frame origin at `origin_b`.
+    pub(crate) fn with_gradient(mut self, d: &Distance, origin_b: &Vector3<f64>) -> Self {
+        self.gradient = d
+            .gradient(&nalgebra::Point3::from(*origin_b))
+            .map(|g| GradientJson {
+                normal: g.normal.into(),
+                translation: g.translation.into(),
+                rotation: g.rotation.into(),
+            });
+        self
+    }
 }
 
 impl From<&Distance> for Output {
@@ -137,6 +166,7 @@ impl From<&Distance> for Output {
             closed_form: d.stats.closed_forms > 0,
             width_limit: "met",
             time_us: None,
+            gradient: None,
         }
     }
 }
@@ -150,8 +180,13 @@ fn pose_from_json(p: &PoseJson) -> Result<Isometry3<f64>, String> {
 }
 
 fn parse_pose(s: &str) -> Result<Isometry3<f64>, String> {
-    let p: PoseJson = serde_json::from_str(s).map_err(|e| format!("--pose-b: {e}"))?;
-    pose_from_json(&p).map_err(|e| format!("--pose-b: {e}"))
+    parse_pose_flag("--pose-b", s)
+}
+
+/// A pose given on the command line as JSON; errors name the flag.
+pub(crate) fn parse_pose_flag(flag: &str, s: &str) -> Result<Isometry3<f64>, String> {
+    let p: PoseJson = serde_json::from_str(s).map_err(|e| format!("{flag}: {e}"))?;
+    pose_from_json(&p).map_err(|e| format!("{flag}: {e}"))
 }
 
 /// A solid built once for every query that names it.
@@ -216,7 +251,7 @@ pub fn run(args: Args) -> CmdResult {
     let time_us = started.elapsed().as_secs_f64() * 1e6;
     let limit = width_limit(&sa, &sb, &opts, &d).name();
     if args.json {
-        let mut out = Output::from(&d);
+        let mut out = Output::from(&d).with_gradient(&d, &pose.translation.vector);
         out.width_limit = limit;
         out.time_us = args.timings.then_some(time_us);
         println!("{}", serde_json::to_string(&out)?);
@@ -232,6 +267,11 @@ pub fn run(args: Args) -> CmdResult {
             d.point_b.x, d.point_b.y, d.point_b.z
         );
         println!("overlap   {}", d.overlap);
+        if let Some(g) = d.gradient(&pose.translation.vector.into()) {
+            let v = |x: nalgebra::Vector3<f64>| format!("{:.9} {:.9} {:.9}", x.x, x.y, x.z);
+            println!("d/dt_B    {}", v(g.translation));
+            println!("d/dr_B    {}", v(g.rotation));
+        }
         if limit != "met" {
             println!("width     wider than asked: limited by {limit}");
         }
@@ -293,7 +333,7 @@ pub(crate) fn answer_line(
     let started = std::time::Instant::now();
     let d = try_distance(&a, &b, &opts).map_err(|e| e.to_string())?;
     let time_us = started.elapsed().as_secs_f64() * 1e6;
-    let mut out = Output::from(&d);
+    let mut out = Output::from(&d).with_gradient(&d, &b.pose.translation.vector);
     out.line = Some(number);
     out.width_limit = width_limit(&a, &b, &opts, &d).name();
     out.time_us = settings.timings.then_some(time_us);

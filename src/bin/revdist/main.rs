@@ -14,6 +14,7 @@ mod models;
 mod profile;
 mod scene;
 mod tessellate;
+mod toi;
 mod tree;
 
 /// Result of a subcommand.
@@ -41,6 +42,8 @@ enum Command {
     Tree(tree::Args),
     /// Minimum distance between two posed solids (one query, or JSON lines with --batch).
     Distance(distance::Args),
+    /// Certified time of impact of two solids moving from start to end poses over [0, 1].
+    Toi(toi::Args),
     /// Closed triangle mesh (OBJ or binary STL) within a certified Hausdorff distance eps.
     Tessellate(tessellate::Args),
     /// Run a scene file (bodies, motions, effects; see experiments/scenes/) with revdist-scene.
@@ -56,6 +59,7 @@ fn main() -> ExitCode {
         Command::Figures(args) => figures::run(args),
         Command::Tree(args) => tree::run(args),
         Command::Distance(args) => distance::run(args),
+        Command::Toi(args) => toi::run(args),
         Command::Tessellate(args) => tessellate::run(args),
         Command::Scene(args) => scene::run(args),
     };

@@ -13,6 +13,7 @@
 
 pub mod batch;
 pub mod distance;
+pub mod gradient;
 pub mod overlap;
 pub mod refine;
 pub mod search;
@@ -22,5 +23,6 @@ pub use distance::{
     distance, distance_cached, try_distance, try_distance_cached, Distance, QueryCache, QueryError,
     QueryOptions, Tolerance,
 };
+pub use gradient::Gradient;
 pub use search::{traverse, Budget, SurfaceBounds, TraversalOptions, TraversalStats};
 pub use width::{width_limit, WidthLimit};

@@ -5,7 +5,7 @@
 //! relative, notes §2); its `rel_err`/`abs_err` are ignored for BVH pairs in 0.7, so there is
 //! no accuracy knob to pass. Overlapping meshes give distance 0 (no signed distance for meshes).
 
-use super::ffi::{self, BvKind};
+use super::ffi::{self, BvKind, CcdSolverKind};
 use super::{pose_rows, BaselineError, TriMesh};
 use nalgebra::{Isometry3, Point3};
 use std::time::{Duration, Instant};
@@ -146,6 +146,87 @@ impl FclMesh {
             distance: out.distance,
             point_a: Point3::from(out.point_a),
             point_b: Point3::from(out.point_b),
+        })
+    }
+}
+
+/// FCL 0.7's continuous-collision solvers for meshes (`fcl::continuousCollide`); its ray
+/// shooting is for primitive shapes only and its polynomial solver for translations only,
+/// and the latter overwrites the models' vertices (a `const_cast` in FCL 0.7), so neither is
+/// offered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum CcdSolver {
+    /// `CCDC_NAIVE`: discrete collision checks at `min(max_iterations, ceil(1 / toc_err))`
+    /// evenly spaced times; the first colliding sample is the time of contact.
+    Naive,
+    /// `CCDC_CONSERVATIVE_ADVANCEMENT`: advancement over BVH distances and FCL's motion
+    /// bounds; stops when a step falls below `toc_err`.
+    ConservativeAdvancement,
+}
+
+impl CcdSolver {
+    fn kind(self) -> CcdSolverKind {
+        match self {
+            CcdSolver::Naive => CcdSolverKind::Naive,
+            CcdSolver::ConservativeAdvancement => CcdSolverKind::ConservativeAdvancement,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CcdSolver::Naive => "naive",
+            CcdSolver::ConservativeAdvancement => "conservative-advancement",
+        }
+    }
+}
+
+/// FCL's continuous-collision answer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FclToi {
+    /// FCL returned a time (not its failure value -1).
+    pub supported: bool,
+    /// FCL reports a contact on `[0, 1]`.
+    pub collide: bool,
+    /// FCL's time of contact (1 when no contact).
+    pub time_of_contact: f64,
+}
+
+impl FclMesh {
+    /// Continuous collision of `self` moving from `a0` to `a1` and `other` moving from `b0`
+    /// to `b1` (FCL's interpolated motion, `CCDM_LINEAR`), by `solver` with FCL's
+    /// `num_max_iterations` and `toc_err`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn continuous_collide(
+        &self,
+        other: &FclMesh,
+        a: [&Isometry3<f64>; 2],
+        b: [&Isometry3<f64>; 2],
+        solver: CcdSolver,
+        max_iterations: u64,
+        toc_err: f64,
+    ) -> Result<FclToi, BaselineError> {
+        if self.bv != other.bv {
+            return Err(BaselineError::Input(format!(
+                "FCL continuous collision needs equal BV types, got {:?} and {:?}",
+                self.bv, other.bv
+            )));
+        }
+        let out = ffi::fcl_mesh_continuous(
+            self.get(),
+            &pose_rows(a[0]),
+            &pose_rows(a[1]),
+            other.get(),
+            &pose_rows(b[0]),
+            &pose_rows(b[1]),
+            solver.kind(),
+            max_iterations,
+            toc_err,
+        )
+        .map_err(BaselineError::cpp(LIBRARY))?;
+        Ok(FclToi {
+            supported: out.supported,
+            collide: out.collide,
+            time_of_contact: out.time_of_contact,
         })
     }
 }

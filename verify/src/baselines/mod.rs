@@ -41,6 +41,23 @@ pub(crate) mod ffi {
         point_b: [f64; 3],
     }
 
+    /// FCL 0.7 continuous-collision solver for meshes (`fcl::CCDSolverType`).
+    #[derive(Debug)]
+    #[repr(u8)]
+    enum CcdSolverKind {
+        /// `CCDC_NAIVE`: discrete collision checks at evenly spaced times.
+        Naive = 0,
+        /// `CCDC_CONSERVATIVE_ADVANCEMENT`: conservative advancement over BVH distances.
+        ConservativeAdvancement = 1,
+    }
+
+    /// FCL continuous collision (`supported == false`: FCL returned its failure value).
+    struct FclToiOut {
+        supported: bool,
+        collide: bool,
+        time_of_contact: f64,
+    }
+
     /// libccd's `ccd_t` parameters (iteration cap and the three tolerances, length units).
     struct CcdParams {
         max_iterations: u64,
@@ -89,6 +106,18 @@ pub(crate) mod ffi {
             b: &FclMesh,
             pose_b: &[f64],
         ) -> Result<FclDistanceOut>;
+        #[allow(clippy::too_many_arguments)]
+        fn fcl_mesh_continuous(
+            a: &FclMesh,
+            pose_a0: &[f64],
+            pose_a1: &[f64],
+            b: &FclMesh,
+            pose_b0: &[f64],
+            pose_b1: &[f64],
+            solver: CcdSolverKind,
+            max_iterations: u64,
+            toc_err: f64,
+        ) -> Result<FclToiOut>;
     }
 
     unsafe extern "C++" {

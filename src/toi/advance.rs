@@ -1,0 +1,345 @@
+//! Certified time of impact by conservative advancement (Johnson and Cohen 1997; Son et al.
+//! 2020, section 3, give the certified lower bound each step uses).
+//!
+//! Invariant: the solids are certified apart — every lower bound of their distance above the
+//! contact distance `D` — for all `t in [0, t_lower)`. A query at `t_lower` with lower bound
+//! `l > D` (after subtracting the motion's rounding, [`MOTION_ROUNDING_REL`]) extends it by
+//! `(l - D) / L`, `L` the speed bound of [`super::speed`]: `d(s) >= l - L (s - t_lower) > D`
+//! there. When the step would pass 1 the solids stay apart on `[0, 1]`.
+//!
+//! Near a contact the steps shrink; when one falls below the time tolerance, or the lower
+//! bound does not clear `D` even at the query's narrowest interval, the advancement has
+//! *stalled*. Then probes at `t_lower + h` (h doubling from the time tolerance) look for a
+//! time whose *upper* bound is `<= D` (for `D = 0`: a certified overlap); the first one
+//! found becomes `t_upper` and a bisection towards `t_lower` moves it down while it keeps
+//! finding certified contacts. The first contact time lies in `[t_lower, t_upper]`. When no
+//! probe certifies a contact (grazing at the query's accuracy, or a budget ran out) the
+//! answer is [`ToiOutcome::Undecided`]: apart before `t_lower`, nothing certified after.
+
+use super::motion::{Motion, MotionError, MOTION_ROUNDING_REL};
+use super::speed::speed_bound;
+use crate::query::{
+    try_distance_cached, Distance, QueryCache, QueryError, QueryOptions, Tolerance, TraversalStats,
+};
+use crate::solid::Solid;
+
+/// Relative shortening of each advancement step: the step `(l - D) / L` is computed with
+/// three roundings (subtraction, division, the product with this factor), each at most a
+/// unit roundoff `1.1e-16` relative; `1e-12` covers them with a wide margin. The sum
+/// `t + step` is then moved down by two ulps ([`below`]) to cover its own rounding.
+pub const STEP_SHRINK_REL: f64 = 1e-12;
+
+/// Default time tolerance: the advancement stalls below steps of this length, and the
+/// bisection stops when `t_upper - t_lower` is below it.
+pub const DEFAULT_TIME_TOLERANCE: f64 = 1e-6;
+
+/// Default cap on the number of distance queries of one time-of-impact search.
+pub const DEFAULT_MAX_QUERIES: usize = 2000;
+
+/// What the caller asks of a time-of-impact search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ToiOptions {
+    /// Contact distance `D >= 0`: the solids "touch" when their distance is `<= D`.
+    pub contact_distance: f64,
+    /// Options of every distance query of the advancement; probes near a contact run with
+    /// [`Tolerance::Absolute`]`(0)` (the narrowest interval the trees allow).
+    pub query: QueryOptions,
+    /// Steps below this stall the advancement; the bisection of `t_upper` stops below it.
+    pub time_tolerance: f64,
+    /// Cap on the number of distance queries (then [`ToiOutcome::Undecided`]).
+    pub max_queries: usize,
+}
+
+impl Default for ToiOptions {
+    fn default() -> Self {
+        ToiOptions {
+            contact_distance: 0.0,
+            query: QueryOptions::default(),
+            time_tolerance: DEFAULT_TIME_TOLERANCE,
+            max_queries: DEFAULT_MAX_QUERIES,
+        }
+    }
+}
+
+/// Why a time-of-impact search cannot run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ToiError {
+    #[error("contact distance must be a finite number >= 0, got {0}")]
+    ContactDistance(f64),
+    #[error("time tolerance must be a finite number > 0, got {0}")]
+    TimeTolerance(f64),
+    #[error("max_queries must be at least 1")]
+    MaxQueries,
+    #[error("motion of solid {which}: {source}")]
+    Motion {
+        which: &'static str,
+        source: MotionError,
+    },
+    #[error("distance query at t = {t}: {source}")]
+    Query { t: f64, source: QueryError },
+}
+
+/// How the search ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ToiOutcome {
+    /// Apart on `[0, t_lower)`, distance `<= D` at `t_upper`.
+    Contact,
+    /// Distance `> D` on all of `[0, 1]`.
+    Apart,
+    /// Apart on `[0, t_lower)`; no contact certified after it (grazing within the query's
+    /// accuracy, or the query cap was reached).
+    Undecided,
+}
+
+impl ToiOutcome {
+    pub fn name(self) -> &'static str {
+        match self {
+            ToiOutcome::Contact => "contact",
+            ToiOutcome::Apart => "apart",
+            ToiOutcome::Undecided => "undecided",
+        }
+    }
+}
+
+/// The answer of [`time_of_impact`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeOfImpact {
+    pub outcome: ToiOutcome,
+    /// Certified apart (distance `> D`) for every `t < t_lower` in `[0, 1]` (`1` for
+    /// [`ToiOutcome::Apart`], where `t = 1` is apart too).
+    pub t_lower: f64,
+    /// A time with distance certified `<= D` at the poses the motions compute for it,
+    /// [`Motion::pose_at`] (only for [`ToiOutcome::Contact`]; see [`MOTION_ROUNDING_REL`]
+    /// for how far those are from the exact motion).
+    pub t_upper: Option<f64>,
+    /// The distance query at `t_upper` (world frame; its witness points), for a contact.
+    pub contact: Option<Distance>,
+    /// Distance queries run (advancement steps, probes and bisection).
+    pub queries: usize,
+    /// Queries of the advancement alone.
+    pub steps: usize,
+    /// The speed bound `L` at `t = 0` ([`super::speed`]).
+    pub speed_bound: f64,
+    /// Traversal counters summed over every query.
+    pub stats: TraversalStats,
+}
+
+/// Largest float at least two ulps below a finite `x >= 0` (0 stays 0).
+fn below(x: f64) -> f64 {
+    if x <= 0.0 {
+        0.0
+    } else {
+        f64::from_bits(x.to_bits().saturating_sub(2))
+    }
+}
+
+/// Bound on the distance of any point of `s` from its frame origin: the root bounding
+/// sphere of the tree about the local origin, grown by the tree's eps.
+fn radius(s: &Solid) -> f64 {
+    let t = &s.tree;
+    t.nodes.get(t.root as usize).map_or(0.0, |n| {
+        n.bound.center.coords.norm() + n.bound.radius + t.eps
+    })
+}
+
+/// One query of the search. `lower` is a bound for the exact motion (the query's lower
+/// bound at the computed poses minus the motion's rounding, [`MOTION_ROUNDING_REL`]);
+/// `upper` is the query's upper bound at the computed poses `pose_at(t)`, which is what a
+/// contact certifies: an overlap certificate (a point inside both solids) has no depth to
+/// absorb the rounding, so the exact motion's distance there is only known to be within
+/// `D` plus that rounding (below `1e-13` of the configuration's scale).
+struct Probe {
+    lower: f64,
+    upper: f64,
+    distance: Distance,
+}
+
+struct Search<'a> {
+    a: &'a Solid,
+    b: &'a Solid,
+    ma: Motion,
+    mb: Motion,
+    ra: f64,
+    rb: f64,
+    opts: ToiOptions,
+    cache: QueryCache,
+    queries: usize,
+    stats: TraversalStats,
+}
+
+impl Search<'_> {
+    fn probe(&mut self, t: f64, tight: bool) -> Result<Probe, ToiError> {
+        let pa = self.ma.pose_at(t);
+        let pb = self.mb.pose_at(t);
+        let a = self.a.with_pose(pa);
+        let b = self.b.with_pose(pb);
+        let mut q = self.opts.query;
+        if tight {
+            q.tolerance = Tolerance::Absolute(0.0);
+        }
+        let d = try_distance_cached(&a, &b, &q, &mut self.cache)
+            .map_err(|source| ToiError::Query { t, source })?;
+        self.queries += 1;
+        self.stats.add(&d.stats);
+        let slack = MOTION_ROUNDING_REL
+            * (2.0
+                + pa.translation.vector.norm()
+                + pb.translation.vector.norm()
+                + self.ra
+                + self.rb);
+        Ok(Probe {
+            lower: d.lower - slack,
+            upper: d.upper,
+            distance: d,
+        })
+    }
+
+    fn budget_left(&self) -> bool {
+        self.queries < self.opts.max_queries
+    }
+}
+
+fn check(opts: &ToiOptions) -> Result<(), ToiError> {
+    let d = opts.contact_distance;
+    if !(d.is_finite() && d >= 0.0) {
+        return Err(ToiError::ContactDistance(d));
+    }
+    let h = opts.time_tolerance;
+    if !(h.is_finite() && h > 0.0) {
+        return Err(ToiError::TimeTolerance(h));
+    }
+    if opts.max_queries == 0 {
+        return Err(ToiError::MaxQueries);
+    }
+    Ok(())
+}
+
+/// Certified time of impact of `a` moving by `ma` and `b` moving by `mb` over `[0, 1]`
+/// (the solids' own poses are ignored). See the module doc for the method and
+/// [`TimeOfImpact`] for what is certified.
+pub fn time_of_impact(
+    a: &Solid,
+    ma: &Motion,
+    b: &Solid,
+    mb: &Motion,
+    opts: &ToiOptions,
+) -> Result<TimeOfImpact, ToiError> {
+    check(opts)?;
+    let mut s = Search {
+        a,
+        b,
+        ma: *ma,
+        mb: *mb,
+        ra: radius(a),
+        rb: radius(b),
+        opts: *opts,
+        cache: QueryCache::default(),
+        queries: 0,
+        stats: TraversalStats::default(),
+    };
+    let dist = opts.contact_distance;
+    let speed0 = speed_bound(ma, s.ra, mb, s.rb, 0.0);
+    let answer =
+        |s: &Search, outcome, t_lower, t_upper: Option<f64>, contact, steps| TimeOfImpact {
+            outcome,
+            t_lower,
+            t_upper,
+            contact,
+            queries: s.queries,
+            steps,
+            speed_bound: speed0,
+            stats: s.stats,
+        };
+    // Advancement: apart on [0, t).
+    let mut t = 0.0_f64;
+    loop {
+        if !s.budget_left() {
+            return Ok(answer(&s, ToiOutcome::Undecided, t, None, None, s.queries));
+        }
+        let mut p = s.probe(t, false)?;
+        if p.upper <= dist {
+            return Ok(answer(
+                &s,
+                ToiOutcome::Contact,
+                t,
+                Some(t),
+                Some(p.distance),
+                s.queries,
+            ));
+        }
+        let speed = speed_bound(ma, s.ra, mb, s.rb, t);
+        let step = |p: &Probe| {
+            if speed > 0.0 {
+                (p.lower - dist) / speed * (1.0 - STEP_SHRINK_REL)
+            } else {
+                f64::INFINITY
+            }
+        };
+        if (p.lower <= dist || step(&p) < opts.time_tolerance) && s.budget_left() {
+            p = s.probe(t, true)?;
+            if p.upper <= dist {
+                return Ok(answer(
+                    &s,
+                    ToiOutcome::Contact,
+                    t,
+                    Some(t),
+                    Some(p.distance),
+                    s.queries,
+                ));
+            }
+        }
+        if p.lower > dist {
+            let h = step(&p);
+            if t + h > 1.0 {
+                // [t, 1] lies inside [t, t + h), where the bound holds.
+                return Ok(answer(&s, ToiOutcome::Apart, 1.0, None, None, s.queries));
+            }
+            if h >= opts.time_tolerance {
+                t = below(t + h).max(t);
+                continue;
+            }
+        }
+        break;
+    }
+    let steps = s.queries;
+    // Stalled at t: look for a certified contact after it.
+    let mut h = opts.time_tolerance;
+    let mut before = t;
+    let mut found: Option<(f64, Distance)> = None;
+    while s.budget_left() {
+        let probe_t = (t + h).min(1.0);
+        let p = s.probe(probe_t, true)?;
+        if p.upper <= dist {
+            found = Some((probe_t, p.distance));
+            break;
+        }
+        if probe_t >= 1.0 {
+            break;
+        }
+        before = probe_t;
+        h *= 2.0;
+    }
+    let Some((mut hi, mut hit)) = found else {
+        return Ok(answer(&s, ToiOutcome::Undecided, t, None, None, steps));
+    };
+    // Move t_upper down towards t while contacts keep being certified.
+    let mut lo = before;
+    while hi - t > opts.time_tolerance && hi - lo > opts.time_tolerance && s.budget_left() {
+        let mid = 0.5 * (lo + hi);
+        let p = s.probe(mid, true)?;
+        if p.upper <= dist {
+            hi = mid;
+            hit = p.distance;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(answer(
+        &s,
+        ToiOutcome::Contact,
+        t,
+        Some(hi),
+        Some(hit),
+        steps,
+    ))
+}
