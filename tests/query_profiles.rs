@@ -220,6 +220,7 @@ fn warm_starts_only_choose_the_first_leaf_pair() {
     let (ta, tb) = (&vase.tree, &ring.tree);
     let opts = TraversalOptions {
         tolerance: ta.target_eps + tb.target_eps,
+        lower_goal: f64::INFINITY,
         budget: Budget::default(),
         bound: BoundKind::Torus,
     };

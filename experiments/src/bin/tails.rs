@@ -435,6 +435,7 @@ fn extent(p: &Profile) -> (f64, f64, f64) {
 fn surface_gap(a: &Solid, b: &Solid, pose: &Isometry3<f64>, width: f64) -> (f64, f64) {
     let opts = TraversalOptions {
         tolerance: width,
+        lower_goal: f64::INFINITY,
         budget: Budget::default(),
         bound: BoundKind::default(),
     };

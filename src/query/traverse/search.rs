@@ -297,6 +297,11 @@ fn record_leaf(
 pub struct TraversalOptions {
     /// Stop when `upper - lower <= tolerance`.
     pub tolerance: f64,
+    /// Also stop as soon as the lower bound exceeds this: the queue's smallest key is above
+    /// it, so every pair left is farther apart (Johnson and Cohen 1997, section 3.1: a
+    /// query may stop once its bounds answer the caller's question). `f64::INFINITY`
+    /// never stops early.
+    pub lower_goal: f64,
     pub budget: Budget,
     pub bound: BoundKind,
 }
@@ -442,7 +447,7 @@ pub fn traverse(
             lower = out.upper;
             break;
         };
-        if e.state == State::Resolved || e.key >= out.upper - tol {
+        if e.state == State::Resolved || e.key >= out.upper - tol || e.key > opts.lower_goal {
             lower = e.key;
             break;
         }
