@@ -29,7 +29,7 @@ pub fn nearest_surface_point(
     x: &Point3<f64>,
     toward: &Vector3<f64>,
 ) -> Point3<f64> {
-    let rho = x.x.hypot(x.y);
+    let rho = (x.x * x.x + x.y * x.y).sqrt();
     let m = Point2::new(rho, x.z);
     let q = nearest_chain_point(tree, m).unwrap_or(m);
     // The meridian of `x`, or of `toward` when `x` is (numerically) on the axis.
