@@ -141,7 +141,7 @@ pub fn convex_distance(
             });
         }
         let gap = r.upper - best_lower;
-        if !(gap > 0.0) || r.iterations >= gjk::MAX_ITERATIONS {
+        if gap.is_nan() || gap <= 0.0 || r.iterations >= gjk::MAX_ITERATIONS {
             return None;
         }
         target_gap = target_gap.min(0.25 * gap);

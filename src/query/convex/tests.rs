@@ -18,7 +18,7 @@ fn solid(name: &str, eps: f64) -> Solid {
     Solid::from_profile(Arc::new(model(name).unwrap()), eps).unwrap()
 }
 
-/// The default options with the convex path on (it is off by default).
+/// The default options with the convex path on (as by default).
 fn with_fast_path() -> QueryOptions {
     QueryOptions {
         convex_path: true,
