@@ -785,3 +785,78 @@ fn witnesses_on_the_surfaces_and_value_within_the_width() {
     }
     assert!(checked >= 400, "{checked} of {queries} checked");
 }
+
+/// Probe for issue 27 item 3: how often the hulls of non-convex solids (GJK on the
+/// supports of their chains' hulls, witnesses moved to the surfaces) would answer a close
+/// query at the default width, and what that costs against the traversal.
+#[test]
+#[ignore = "probe: hull bound for non-convex pairs"]
+fn probe_hull_bound_for_non_convex() {
+    use crate::bvh::convex::SupportTable;
+    use std::time::Instant;
+    let mut rng = SplitMix64(0x4A11);
+    let names = [
+        "pawn",
+        "cup",
+        "bottle",
+        "table",
+        "lightmill",
+        "pawn_ff",
+        "cup_ff",
+    ];
+    let eps = 1e-4;
+    let solids: Vec<Solid> = names.iter().map(|n| solid(n, eps)).collect();
+    let tables: Vec<SupportTable> = solids
+        .iter()
+        .map(|s| SupportTable::of_chain(&s.tree.chain).unwrap())
+        .collect();
+    for i in 0..names.len() {
+        for j in i..names.len() {
+            let (a, b) = (&solids[i], &solids[j]);
+            let (mut ok, mut n, mut t_hull, mut t_trav) = (0, 0, 0.0, 0.0);
+            for _ in 0..40 {
+                let gap = 10f64.powf(rng.range(-3.0, -1.0));
+                let Some(pose) = near_touching(a, b, &mut rng, gap) else {
+                    continue;
+                };
+                let bp = b.with_pose(pose);
+                let pos_ab = a.relative_pose(&bp);
+                let rot = pos_ab.rotation.to_rotation_matrix();
+                let shift = pos_ab.translation.vector;
+                let t0 = Instant::now();
+                let r = super::gjk::gjk(
+                    |d| tables[i].support(d),
+                    |d| rot * tables[j].support(&rot.inverse_transform_vector(d)) + shift,
+                    Vector3::x(),
+                    1e-4,
+                    1e-14,
+                );
+                let v = r.point_a - r.point_b;
+                let qa = super::witness::nearest_surface_point(&a.tree, &r.point_a, &-v);
+                let qb = pos_ab
+                    * super::witness::nearest_surface_point(
+                        &bp.tree,
+                        &pos_ab.inverse_transform_point(&r.point_b),
+                        &pos_ab.inverse_transform_vector(&v),
+                    );
+                let value = (qa - qb).norm();
+                t_hull += t0.elapsed().as_secs_f64();
+                let t1 = Instant::now();
+                let d = distance(a, &bp, &QueryOptions::default());
+                t_trav += t1.elapsed().as_secs_f64();
+                n += 1;
+                if !r.intersect && value - r.lower <= 2e-4 {
+                    ok += 1;
+                    assert!(r.lower - 2e-4 <= d.upper, "{} {}", r.lower, d.upper);
+                }
+            }
+            println!(
+                "{:>10}-{:<10} answered {ok:>2}/{n}  hull {:.2} us  traversal {:.1} us",
+                names[i],
+                names[j],
+                t_hull / n as f64 * 1e6,
+                t_trav / n as f64 * 1e6
+            );
+        }
+    }
+}
