@@ -45,6 +45,11 @@ pub struct GjkResult {
     pub point_b: Point3<f64>,
     /// The simplex reached the origin: the sets intersect (up to rounding) at `point_a`.
     pub intersect: bool,
+    /// `point_a` is a single support point of A (every vertex of the final simplex has the
+    /// same point of A), so it lies on A's boundary where the supports do; likewise
+    /// `single_b`.
+    pub single_a: bool,
+    pub single_b: bool,
     pub iterations: usize,
 }
 
@@ -116,12 +121,23 @@ pub fn gjk(
         pa += s.a.coords * l;
         pb += s.b.coords * l;
     }
+    let single =
+        |f: fn(&Vertex) -> Point3<f64>| simplex[..len].iter().all(|s| f(s) == f(&simplex[0]));
+    let (single_a, single_b) = (single(|s| s.a), single(|s| s.b));
+    if single_a {
+        pa = simplex[0].a.coords;
+    }
+    if single_b {
+        pb = simplex[0].b.coords;
+    }
     GjkResult {
         lower,
         upper: (pa - pb).norm(),
         point_a: Point3::from(pa),
         point_b: Point3::from(pb),
         intersect,
+        single_a,
+        single_b,
         iterations,
     }
 }

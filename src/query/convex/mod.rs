@@ -8,20 +8,32 @@
 //! The distance between convex solids is that between the sets (0 when they meet), and it
 //! moves by at most `h_A + h_B` from `H_A, H_B` to the true solids. So with GJK's bounds
 //! `[l, u]` on `d(H_A, H_B)` the answer is `[max(0, l - w), u + w]`, `w = h_A + h_B` plus the
-//! query's rounding slack and [`GJK_ROUNDING_REL`]; the witnesses are GJK's points, on the
-//! hulls (within `h` of the true surfaces). Overlap is reported only with a point of both
-//! hulls that the tree's containment test puts inside both true solids with a margin above
-//! eps and slack ([`crate::bvh::containment`]).
+//! query's rounding slack and [`GJK_ROUNDING_REL`]. Overlap is reported only with a point of
+//! both hulls that the tree's containment test puts inside both true solids with a margin
+//! above eps and slack ([`crate::bvh::containment`]).
 //!
-//! **Width.** GJK runs until `u - l` fits the requested width less `2 w`, or the narrowest
-//! interval a traversal at tolerance 0 reaches, `2 w` plus [`SETTLE_REL`] of the scale,
-//! whichever is wider (the trees' eps limit a traversal the same way). When it cannot get
+//! **Witnesses and value.** GJK's closest points are convex combinations of support points,
+//! inside curved hulls by up to the gap `u - l`. Each is moved to the nearest point of its
+//! approximating surface ([`witness`]), within the tree's eps of the true surface; the value
+//! is their distance. Both points lie in the hulls, so `l <= d(H_A, H_B) <=` value, and the
+//! value exceeds the approximations' distance by at most `value - l <= 2 (u - l) +` the
+//! certificates' dents ([`witness`] module doc). GJK therefore runs to a gap of half the
+//! requested width (less the dents), and the path declines when `value - l` exceeds the
+//! width: the value is then within `eps_a + eps_b + width` of the truth, as a traversal's.
+//! The interval is widened to hold the value (raising an upper bound or lowering a lower one
+//! keeps it valid).
+//!
+//! **Width.** The interval must fit the requested width, or the narrowest interval a
+//! traversal at tolerance 0 reaches, `2 w` plus [`SETTLE_REL`] of the scale, whichever is
+//! wider (the trees' eps limit a traversal the same way); GJK's gap is at most half of what
+//! the widening leaves of it, which also covers the witnesses' moves. When it cannot get
 //! there, or when the hulls meet without a certified common point, the path declines and the
 //! query traverses.
 
 pub mod gjk;
 #[cfg(test)]
 mod tests;
+pub mod witness;
 
 use crate::bvh::containment::point_in_solid;
 use crate::bvh::convex::ConvexHullData;
@@ -29,11 +41,18 @@ use crate::bvh::QueryTree;
 use crate::tolerances::SETTLE_REL;
 use gjk::gjk;
 use nalgebra::{Isometry3, Point3, Vector3};
+use witness::nearest_surface_point;
 
 /// Rounding of GJK's arithmetic (support lifts, barycentric combinations, dot products of
 /// points of the configuration's size), relative to the configuration scale: a few hundred
 /// ulps, with margin.
 pub const GJK_ROUNDING_REL: f64 = 1e-13;
+
+/// How many times GJK resumes, each with a quarter of its last gap, when the witnesses moved
+/// to the surfaces leave the value or the interval outside the width: GJK converges to
+/// rounding in a few dozen iterations on smooth sets, and two resumes cover a gap 16 times
+/// narrower; beyond that the query traverses.
+const GJK_RESUMES: usize = 2;
 
 /// The fast path's answer, in A's frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,7 +81,6 @@ pub fn convex_distance(
     let scale = 1.0 + pos_ab.translation.vector.norm() + ca.support.extent + cb.support.extent;
     let widen = ca.error + cb.error + slack + GJK_ROUNDING_REL * scale;
     let allowed = requested_width.max(width_floor(ta, tb, pos_ab, slack)?);
-    let target_gap = allowed - 2.0 * widen;
     let center = |t: &QueryTree| {
         t.nodes.get(t.root as usize).map_or(Point3::origin(), |n| {
             Point3::new(0.0, 0.0, n.bound.center.y)
@@ -80,30 +98,81 @@ pub fn convex_distance(
         .unwrap_or(centers[0] - centers[1]);
     let rotation = pos_ab.rotation.to_rotation_matrix();
     let shift = pos_ab.translation.vector;
-    let r = gjk(
-        |d| ca.support.support(d),
-        |d| rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift,
-        initial,
-        target_gap,
-        1e-14 * scale,
-    );
-    if r.intersect {
-        return certified_overlap(ta, tb, pos_ab, slack, &r, centers);
+    let rounding = GJK_ROUNDING_REL * scale;
+    let dents = ca.certificate.dent + cb.certificate.dent;
+    // The gap GJK must reach (module doc, "Witnesses"): what the widening leaves of the
+    // allowed width, and the value's error within the requested width; the moves to the
+    // surfaces usually shorten the pair (they remove the depths behind the supporting
+    // planes), else GJK resumes with a quarter of the gap.
+    let mut target_gap = (allowed - 2.0 * widen).min(requested_width - dents + rounding);
+    let mut start = initial;
+    let mut best_lower = f64::NEG_INFINITY;
+    for _ in 0..=GJK_RESUMES {
+        let r = gjk(
+            |d| ca.support.support(d),
+            |d| rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift,
+            start,
+            target_gap,
+            1e-14 * scale,
+        );
+        if r.intersect {
+            return certified_overlap(ta, tb, pos_ab, slack, &r, centers);
+        }
+        best_lower = best_lower.max(r.lower);
+        let (point_a, point_b) = surface_witnesses(ta, tb, pos_ab, &r);
+        let value = (point_a - point_b).norm();
+        // `value` is a distance between points of the approximating solids, which lie in the
+        // hulls: `lower <= d(H_A, H_B) <= value`. It exceeds the approximations' distance by
+        // at most `value - lower`, which must fit the requested width (up to rounding) for
+        // the value to be within `eps_a + eps_b + width` of the truth.
+        let fits = value - best_lower <= requested_width + rounding;
+        // Any number above an upper bound is one; any number below a lower bound is one.
+        let lower = (best_lower - widen).max(0.0).min(value);
+        let upper = (r.upper + widen).max(value);
+        if fits && upper - lower <= allowed {
+            return Some(ConvexAnswer {
+                value,
+                lower,
+                upper,
+                point_a,
+                point_b,
+                overlap: false,
+                iterations: r.iterations,
+            });
+        }
+        let gap = r.upper - best_lower;
+        if gap.is_nan() || gap <= 0.0 || r.iterations >= gjk::MAX_ITERATIONS {
+            return None;
+        }
+        target_gap = target_gap.min(0.25 * gap);
+        start = r.point_a - r.point_b;
     }
-    let lower = (r.lower - widen).max(0.0);
-    let upper = r.upper + widen;
-    if (upper - lower).is_nan() || upper - lower > allowed {
-        return None;
-    }
-    Some(ConvexAnswer {
-        value: r.upper.clamp(lower, upper),
-        lower,
-        upper,
-        point_a: r.point_a,
-        point_b: r.point_b,
-        overlap: false,
-        iterations: r.iterations,
-    })
+    None
+}
+
+/// GJK's closest points moved to the approximating surfaces ([`witness`]), B's in A's
+/// frame; a point on the axis moves in the meridian towards the other solid. A single
+/// support point is on its surface already ([`crate::bvh::convex::SupportTable`]: hull
+/// vertices and arc points of the chain, lifted by the azimuth).
+fn surface_witnesses(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    r: &gjk::GjkResult,
+) -> (Point3<f64>, Point3<f64>) {
+    let v = r.point_a - r.point_b;
+    let point_a = if r.single_a {
+        r.point_a
+    } else {
+        nearest_surface_point(ta, &r.point_a, &-v)
+    };
+    let point_b = if r.single_b {
+        r.point_b
+    } else {
+        let local_b = pos_ab.inverse_transform_point(&r.point_b);
+        pos_ab * nearest_surface_point(tb, &local_b, &pos_ab.inverse_transform_vector(&v))
+    };
+    (point_a, point_b)
 }
 
 /// `p - q` for the closest points `p` of segment `a` and `q` of segment `b`, either

@@ -89,10 +89,17 @@ pub fn offset_distance(
         let t = (0.5 * (a.radius - a.error - b.radius + b.error + d_core)).clamp(0.0, d_core);
         ca + dir * t
     });
-    // Offset surfaces that meet (within the band around touching): both witnesses at the
-    // core-segment point between them, within |value| / 2 of each surface.
+    // Offset surfaces that meet (within the band around touching): both witnesses at one
+    // point, on both spheres' circle of intersection for two balls (on both surfaces), else
+    // at the core-segment point between them, within |value| / 2 of each surface.
+    let balls = matches!((a.core, b.core), (Core::Point { .. }, Core::Point { .. }));
     let (point_a, point_b) = if value > 0.0 {
         (ca + dir * a.radius, cb - dir * b.radius)
+    } else if let Some(x) = balls
+        .then(|| sphere_intersection(ca, a.radius, cb, b.radius))
+        .flatten()
+    {
+        (x, x)
     } else {
         let x = ca + dir * (0.5 * (a.radius - b.radius + d_core)).clamp(0.0, d_core);
         (x, x)
@@ -107,6 +114,29 @@ pub fn offset_distance(
     }
 }
 
+/// A point on both spheres (centres `ca`, `cb`, radii `ra`, `rb`), on their circle of
+/// intersection: at `s = (d^2 + ra^2 - rb^2) / (2 d)` along the centre line and `sqrt(ra^2 -
+/// s^2)` across it, so that `|x - ca|^2 = ra^2` and `|x - cb|^2 = rb^2` up to rounding; `None`
+/// when the spheres do not meet (one inside the other) or share a centre.
+fn sphere_intersection(ca: Point3<f64>, ra: f64, cb: Point3<f64>, rb: f64) -> Option<Point3<f64>> {
+    let axis = cb - ca;
+    let d = axis.norm();
+    if d.is_nan() || d <= 0.0 || d < (ra - rb).abs() {
+        return None;
+    }
+    let dir = axis / d;
+    let s = (d * d + ra * ra - rb * rb) / (2.0 * d);
+    let h = (ra * ra - s * s).max(0.0).sqrt();
+    // Any unit vector across the centre line.
+    let helper = if dir.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let across = dir.cross(&helper).normalize();
+    Some(ca + dir * s + across * h)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -116,6 +146,33 @@ mod tests {
     use crate::test_rng::Lcg;
     use nalgebra::{Point2, Translation3, UnitQuaternion};
     use std::f64::consts::{PI, TAU};
+
+    /// Balls whose surfaces cross by less than the touching band: the witnesses lie on both
+    /// spheres (the oracle's check d), not between them (they were `|value| / 2` off).
+    #[test]
+    fn touching_balls_have_witnesses_on_both_surfaces() {
+        let ball = |z: f64, r: f64| OffsetSolid {
+            core: Core::Point { z },
+            radius: r,
+            error: 1e-13,
+        };
+        let (a, b) = (ball(0.0, 3.5), ball(1.0, 3.5));
+        let mut rng = Lcg(91);
+        for depth in [1e-10, 3e-11, 1e-12] {
+            let dir = Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5).normalize();
+            // B's centre (its core is at z = 1 of its frame) at 7 - depth from A's.
+            let rot = UnitQuaternion::from_scaled_axis(Vector3::new(rng.f(), rng.f(), rng.f()));
+            let centre = dir * (7.0 - depth);
+            let shift = centre - rot * Vector3::new(0.0, 0.0, 1.0);
+            let pos = Isometry3::from_parts(Translation3::from(shift), rot);
+            let r = offset_distance(&a, &b, &pos, 1e-9);
+            assert!(r.inside_both.is_none() && r.value == 0.0, "{depth}: {r:?}");
+            assert_eq!(r.point_a, r.point_b);
+            let on_a = (r.point_a.coords.norm() - 3.5).abs();
+            let on_b = ((r.point_b.coords - centre).norm() - 3.5).abs();
+            assert!(on_a < 1e-14 && on_b < 1e-14, "{depth}: {on_a:e} {on_b:e}");
+        }
+    }
 
     fn arc(c: [f64; 2], r: f64, phi0: f64, sweep: f64) -> ProfileArc {
         ProfileArc::Arc {

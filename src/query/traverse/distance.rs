@@ -73,7 +73,7 @@ impl Default for QueryOptions {
             bound: BoundKind::default(),
             refine: false,
             closed_form: true,
-            convex_path: false,
+            convex_path: true,
         }
     }
 }
