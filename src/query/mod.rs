@@ -31,8 +31,8 @@ pub mod traverse;
 pub use crate::tolerances;
 
 pub use traverse::{
-    distance, distance_cached, try_distance, try_distance_cached, Budget, Distance, Gradient,
-    QueryCache, QueryError, QueryOptions, Tolerance, TraversalStats,
+    distance, distance_cached, query_slack, try_distance, try_distance_cached, Budget, Distance,
+    Gradient, QueryCache, QueryError, QueryOptions, Tolerance, TraversalStats,
 };
 
 pub use crate::bvh::{Patch, ProfileArc, QueryTree};

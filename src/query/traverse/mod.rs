@@ -20,8 +20,8 @@ pub mod search;
 pub mod width;
 
 pub use distance::{
-    distance, distance_cached, try_distance, try_distance_cached, Distance, QueryCache, QueryError,
-    QueryOptions, Tolerance,
+    distance, distance_cached, query_slack, try_distance, try_distance_cached, Distance,
+    QueryCache, QueryError, QueryOptions, Tolerance,
 };
 pub use gradient::Gradient;
 pub use search::{traverse, Budget, SurfaceBounds, TraversalOptions, TraversalStats};

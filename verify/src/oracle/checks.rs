@@ -111,6 +111,12 @@ pub struct CheckInput<'a> {
     pub eps_b: f64,
     /// The tolerance the query was asked for (`QueryOptions::tolerance`).
     pub tolerance: f64,
+    /// The rounding slack the library declares for this query
+    /// ([`revdist::query::query_slack`], `POSE_SLACK_REL` and `SIZE_SLACK_REL` of the
+    /// scale): it widens the certified interval by that much on each side, so the value
+    /// (check **c**) and the touching band of the overlap flag (**g**, **h**) may be off by
+    /// it too. Checks **a** and **b** do not get it: the interval already contains it.
+    pub declared_slack: f64,
     pub oracle: &'a OracleResult,
     pub a: &'a PlanarIndex,
     pub b: &'a PlanarIndex,
@@ -139,7 +145,9 @@ pub fn check(inp: &CheckInput) -> Vec<Violation> {
     let o = inp.oracle;
     let slack = inp.slack();
     let eps_sum = inp.eps_a + inp.eps_b + inp.tolerance;
-    let band = 2.0 * (inp.eps_a + inp.eps_b) + inp.tolerance + slack;
+    let band = 2.0 * (inp.eps_a + inp.eps_b) + inp.tolerance + slack + inp.declared_slack;
+    // The value's allowance (check c) includes the library's declared rounding.
+    let value_slack = slack + inp.declared_slack;
     let (u, l) = (o.solid_upper(), o.solid_lower());
     let mut out = Vec::new();
     let mut push = |check: Check, excess: f64, detail: String| {
@@ -181,20 +189,20 @@ pub fn check(inp: &CheckInput) -> Vec<Violation> {
         );
     }
     // c
-    if d.value - u > eps_sum + slack {
+    if d.value - u > eps_sum + value_slack {
         push(
             Check::Value,
-            d.value - u - eps_sum - slack,
+            d.value - u - eps_sum - value_slack,
             format!(
                 "value {:e} > oracle upper {:e} + eps_a + eps_b {:e}",
                 d.value, u, eps_sum
             ),
         );
     }
-    if !d.overlap && u - d.value > eps_sum + slack {
+    if !d.overlap && u - d.value > eps_sum + value_slack {
         push(
             Check::Value,
-            u - d.value - eps_sum - slack,
+            u - d.value - eps_sum - value_slack,
             format!(
                 "value {:e} < oracle distance {:e} - eps_a - eps_b {:e} (oracle lower {:e})",
                 d.value, u, eps_sum, l

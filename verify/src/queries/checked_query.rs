@@ -10,7 +10,9 @@ use crate::oracle::{self, check, refine_hint, surface_distance, CheckInput, Orac
 use crate::oracle::{OracleResult, PlanarIndex};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
-use revdist::query::{distance, distance_cached, Distance, QueryCache, QueryOptions, Tolerance};
+use revdist::query::{
+    distance, distance_cached, query_slack, Distance, QueryCache, QueryOptions, Tolerance,
+};
 use revdist::solid::Solid;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -102,6 +104,7 @@ fn check_input<'a>(
         tolerance: qopts
             .tolerance
             .width(sa.tree.target_eps, sb.tree.target_eps),
+        declared_slack: query_slack(&sa.tree, &sb.tree, &sa.relative_pose(sb)),
         oracle: o,
         a,
         b,
