@@ -55,6 +55,9 @@ OcctDistanceOut occt_distance(const OcctSolid& a, const OcctSolid& b,
 // Counts of the solid's faces, edges and vertices (for reports and tests).
 rust::Vec<std::uint32_t> occt_topology(const OcctSolid& s);
 
+// CPU time of the calling thread in seconds (CLOCK_THREAD_CPUTIME_ID; NaN if unavailable).
+double occt_thread_cpu_seconds();
+
 // OCC_VERSION_COMPLETE of the headers compiled against.
 rust::String occt_version();
 

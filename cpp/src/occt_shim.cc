@@ -2,6 +2,7 @@
 #include "occt_shim.h"
 
 #include <cmath>
+#include <ctime>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -147,6 +148,14 @@ TopoDS_Shape validated_solid(const TopoDS_Shape& shape, const char* what) {
   return solid;
 }
 
+// CPU time of the calling thread (POSIX CLOCK_THREAD_CPUTIME_ID), in seconds: unlike wall-clock
+// time it does not grow when other processes share the cores.
+double thread_cpu_seconds() {
+  timespec ts{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0) return std::nan("");
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 std::unique_ptr<OcctSolid> wrap(TopoDS_Shape shape) {
   return std::make_unique<OcctSolid>(
       std::make_unique<OcctSolid::Impl>(OcctSolid::Impl{std::move(shape)}));
@@ -223,7 +232,9 @@ OcctDistanceOut occt_distance(const OcctSolid& a, const OcctSolid& b,
     trsf.SetValues(pose_b[0], pose_b[1], pose_b[2], pose_b[3], pose_b[4], pose_b[5], pose_b[6],
                    pose_b[7], pose_b[8], pose_b[9], pose_b[10], pose_b[11]);
     const TopoDS_Shape placed = b.impl->shape.Located(TopLoc_Location(trsf));
+    const double cpu0 = thread_cpu_seconds();
     BRepExtrema_DistShapeShape dist(a.impl->shape, placed, deflection, Extrema_ExtFlag_MIN);
+    const double cpu1 = thread_cpu_seconds();
     if (!dist.IsDone() || dist.NbSolution() < 1) {
       throw std::runtime_error("no solution (IsDone() is false)");
     }
@@ -231,6 +242,7 @@ OcctDistanceOut occt_distance(const OcctSolid& a, const OcctSolid& b,
     out.distance = dist.Value();
     out.inner = dist.InnerSolution();
     out.solutions = static_cast<std::uint32_t>(dist.NbSolution());
+    out.cpu_seconds = cpu1 - cpu0;
     const gp_Pnt pa = dist.PointOnShape1(1);
     const gp_Pnt pb = dist.PointOnShape2(1);
     out.point_a = {pa.X(), pa.Y(), pa.Z()};
@@ -248,6 +260,8 @@ rust::Vec<std::uint32_t> occt_topology(const OcctSolid& s) {
   }
   return out;
 }
+
+double occt_thread_cpu_seconds() { return thread_cpu_seconds(); }
 
 rust::String occt_version() { return rust::String(OCC_VERSION_COMPLETE); }
 

@@ -72,6 +72,20 @@ pub fn version() -> Result<String, BaselineError> {
     }
 }
 
+/// CPU time consumed so far by the calling thread (`CLOCK_THREAD_CPUTIME_ID`, through the OCCT
+/// shim), or `None` without OCCT or when the clock is unavailable. Used to time revdist's
+/// queries on the same footing as OCCT's.
+pub fn thread_cpu_time() -> Option<Duration> {
+    #[cfg(revdist_occt)]
+    {
+        Duration::try_from_secs_f64(ffi::occt_thread_cpu_seconds()).ok()
+    }
+    #[cfg(not(revdist_occt))]
+    {
+        None
+    }
+}
+
 #[cfg(not(revdist_occt))]
 fn missing() -> BaselineError {
     BaselineError::Missing {
@@ -124,6 +138,9 @@ pub struct OcctDistance {
     pub point_b: Point3<f64>,
     /// Wall-clock time of the call (construction of the algorithm included).
     pub time: Duration,
+    /// CPU time of the calling thread in `BRepExtrema_DistShapeShape` (not inflated by other
+    /// processes sharing the cores).
+    pub cpu_time: Duration,
 }
 
 // SAFETY: an `OcctSolid` owns its shape's topology and geometry exclusively (OCCT's handles are
@@ -248,6 +265,7 @@ impl OcctSolid {
                 point_a: Point3::from(out.point_a),
                 point_b: Point3::from(out.point_b),
                 time,
+                cpu_time: Duration::try_from_secs_f64(out.cpu_seconds).unwrap_or_default(),
             })
         }
         #[cfg(not(revdist_occt))]

@@ -20,6 +20,8 @@ pub(crate) mod ffi {
         /// `InnerSolution()`: a vertex of one solid was classified inside the other.
         inner: bool,
         solutions: u32,
+        /// CPU time of the calling thread spent in `BRepExtrema_DistShapeShape`.
+        cpu_seconds: f64,
         point_a: [f64; 3],
         point_b: [f64; 3],
     }
@@ -39,5 +41,6 @@ pub(crate) mod ffi {
         ) -> Result<OcctDistanceOut>;
         fn occt_topology(s: &OcctSolid) -> Vec<u32>;
         fn occt_version() -> String;
+        fn occt_thread_cpu_seconds() -> f64;
     }
 }
