@@ -266,8 +266,16 @@ fn crosscheck_command(
         eprintln!("error: --eps needs numbers in (0, 1), got {eps:?}");
         return 2;
     }
-    if occt.eps.is_empty() || occt.eps.iter().any(|e| !(e.is_finite() && *e > 0.0 && *e < 1.0)) {
-        eprintln!("error: --occt-eps needs numbers in (0, 1), got {:?}", occt.eps);
+    if occt.eps.is_empty()
+        || occt
+            .eps
+            .iter()
+            .any(|e| !(e.is_finite() && *e > 0.0 && *e < 1.0))
+    {
+        eprintln!(
+            "error: --occt-eps needs numbers in (0, 1), got {:?}",
+            occt.eps
+        );
         return 2;
     }
     let (poses, convex_poses, occt_poses) = if quick {

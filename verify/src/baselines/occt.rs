@@ -199,7 +199,8 @@ impl OcctSolid {
         #[cfg(revdist_occt)]
         {
             let start = Instant::now();
-            let inner = ffi::occt_torus(major, minor, centre_z).map_err(BaselineError::cpp(LIBRARY))?;
+            let inner =
+                ffi::occt_torus(major, minor, centre_z).map_err(BaselineError::cpp(LIBRARY))?;
             Ok(OcctSolid {
                 inner,
                 construction: Construction::Torus {
@@ -249,13 +250,21 @@ impl OcctSolid {
         #[cfg(revdist_occt)]
         {
             let start = Instant::now();
-            let out = ffi::occt_distance(&self.inner, &other.inner, &pose_rows(pose_b), OCCT_DEFLECTION)
-                .map_err(BaselineError::cpp(LIBRARY))?;
+            let out = ffi::occt_distance(
+                &self.inner,
+                &other.inner,
+                &pose_rows(pose_b),
+                OCCT_DEFLECTION,
+            )
+            .map_err(BaselineError::cpp(LIBRARY))?;
             let time = start.elapsed();
             if !out.distance.is_finite() || out.distance < 0.0 {
                 return Err(BaselineError::Cpp {
                     library: LIBRARY,
-                    message: format!("distance {} is not a finite non-negative number", out.distance),
+                    message: format!(
+                        "distance {} is not a finite non-negative number",
+                        out.distance
+                    ),
                 });
             }
             Ok(OcctDistance {
@@ -294,10 +303,8 @@ pub fn circle_of(profile: &Profile) -> Option<(f64, f64, f64)> {
         return None;
     }
     let (ab2, ac2) = (ab.norm_squared(), ac.norm_squared());
-    let centre = a + nalgebra::Vector2::new(
-        (ac.y * ab2 - ab.y * ac2) / d,
-        (ab.x * ac2 - ac.x * ab2) / d,
-    );
+    let centre =
+        a + nalgebra::Vector2::new((ac.y * ab2 - ab.y * ac2) / d, (ab.x * ac2 - ac.x * ab2) / d);
     let r = (a - centre).norm();
     let on_circle = s
         .iter()

@@ -146,7 +146,10 @@ pub fn run(opts: &Options, threads: usize) -> Result<Vec<CaseRecord>, String> {
     }
     crate::baselines::occt::version().map_err(|e| e.to_string())?;
     if opts.occt_eps.is_empty() || opts.occt_eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
-        return Err(format!("OCCT eps must be positive numbers, got {:?}", opts.occt_eps));
+        return Err(format!(
+            "OCCT eps must be positive numbers, got {:?}",
+            opts.occt_eps
+        ));
     }
     let mut shapes: HashMap<String, Arc<Shape>> = HashMap::new();
     for (a, b) in &opts.occt_pairs {
@@ -267,8 +270,8 @@ fn occt_job(
                     let r = point_in_solid(&s.tree, &pose.inverse_transform_point(p));
                     r.inside && r.margin > s.tree.target_eps + OCCT_TOLERANCE + slack
                 };
-                nested = inside(sa, &Isometry3::identity(), &o.point_b)
-                    || inside(sb, &iso, &o.point_a);
+                nested =
+                    inside(sa, &Isometry3::identity(), &o.point_b) || inside(sb, &iso, &o.point_a);
                 nested
             });
             let note = if judgement.verdict == super::criterion::Verdict::Failed {

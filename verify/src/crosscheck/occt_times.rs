@@ -64,7 +64,10 @@ fn collect(
             .entry((r.a.clone(), r.b.clone()))
             .or_default()
             .add(r, first);
-        families.entry(family(&r.a, &r.b)).or_default().add(r, first);
+        families
+            .entry(family(&r.a, &r.b))
+            .or_default()
+            .add(r, first);
     }
     Some((pairs, families, eps))
 }

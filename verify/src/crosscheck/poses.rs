@@ -3,11 +3,11 @@
 //! shapes allow).
 
 use super::shapes::Prepared;
-use revdist::solid::Solid;
 use crate::queries::PoseSpec;
 use crate::random_profiles::SplitMix64;
 use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 use revdist::query::{distance, QueryOptions};
+use revdist::solid::Solid;
 
 /// Gap range (length units) of separated poses.
 pub const SEPARATED_GAPS: (f64, f64) = (0.1, 1.0);
@@ -91,8 +91,7 @@ fn along<T: PoseTarget>(
     u: &Vector3<f64>,
     s: f64,
 ) -> PoseSpec {
-    let t =
-        Vector3::new(0.0, 0.0, a.centre_z()) + u * s - q * Vector3::new(0.0, 0.0, b.centre_z());
+    let t = Vector3::new(0.0, 0.0, a.centre_z()) + u * s - q * Vector3::new(0.0, 0.0, b.centre_z());
     spec(t, q)
 }
 
@@ -151,7 +150,8 @@ pub fn make_pose_in<T: PoseTarget>(
             along(a, b, &q, &u, s)
         }
         PoseKind::Overlapping => {
-            let depth = rng.log_range(OVERLAP_DEPTHS.0, OVERLAP_DEPTHS.1) * a.radius().min(b.radius());
+            let depth =
+                rng.log_range(OVERLAP_DEPTHS.0, OVERLAP_DEPTHS.1) * a.radius().min(b.radius());
             let s = approach(a, b, &q, &u, near.0).unwrap_or(0.0);
             along(a, b, &q, &u, s - depth)
         }

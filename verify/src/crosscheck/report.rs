@@ -251,7 +251,8 @@ impl Report {
     /// The Markdown report.
     pub fn markdown(&self) -> String {
         let o = &self.options;
-        let mut s = String::from("# revdist cross-check against FCL, CGAL, libccd and OpenCASCADE\n\n");
+        let mut s =
+            String::from("# revdist cross-check against FCL, CGAL, libccd and OpenCASCADE\n\n");
         let _ = writeln!(
             s,
             "Poses per mesh pair and eps: {}; per convex pair and eps: {}; eps: {:?}; OCCT \
@@ -279,7 +280,13 @@ impl Report {
              evidence blames.\n\n",
         );
         s.push_str("## Totals\n\n| check | cases | passed | explained | failed | worst separation | max usage (passed) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-        for c in [Check::Fcl, Check::Cgal, Check::Gjk, Check::Penetration, Check::Occt] {
+        for c in [
+            Check::Fcl,
+            Check::Cgal,
+            Check::Gjk,
+            Check::Penetration,
+            Check::Occt,
+        ] {
             let t = self.total(Some(c));
             if t.cases > 0 {
                 let _ = writeln!(
@@ -418,7 +425,13 @@ impl Report {
     /// A short text summary for the terminal.
     pub fn summary(&self) -> String {
         let mut s = String::new();
-        for c in [Check::Fcl, Check::Cgal, Check::Gjk, Check::Penetration, Check::Occt] {
+        for c in [
+            Check::Fcl,
+            Check::Cgal,
+            Check::Gjk,
+            Check::Penetration,
+            Check::Occt,
+        ] {
             let t = self.total(Some(c));
             if t.cases > 0 {
                 let _ = writeln!(
