@@ -149,14 +149,21 @@ fn sweep_slice_never_blames_revdist() {
     let mut passed = 0;
     for r in &records {
         match r.judgement.verdict {
-            Verdict::Passed | Verdict::Explained => passed += 1,
-            // OCCT is numerical: it may miss a minimum, which the note must say.
-            Verdict::Failed => assert_eq!(r.note, "occt-missed-minimum", "{}", r.reproducer()),
+            Verdict::Passed => passed += 1,
+            // OCCT is numerical: it may miss a minimum (proven by revdist's witnesses on the
+            // true surfaces), or report a nested pair's surface distance.
+            Verdict::Explained => assert!(
+                r.note == occt::OCCT_MISSED || r.note.starts_with("nested"),
+                "{}: {}",
+                r.note,
+                r.reproducer()
+            ),
+            Verdict::Failed => panic!("{}: {}", r.note, r.reproducer()),
         }
         assert!(r.baseline_time.is_some());
     }
     assert!(
-        passed >= records.len() - 2,
+        passed + 2 >= records.len(),
         "{passed} of {} passed",
         records.len()
     );

@@ -277,7 +277,8 @@ impl Report {
              intervals are disjoint by that much; `usage` = |value - d| / (h_a + h_b + width). \
              OCCT (`occt-brep`, verify/src/crosscheck/occt.rs): the same test with OCCT's \
              tolerance 1e-7 in place of h_a + h_b; a failed case's note says which side the \
-             evidence blames.\n\n",
+             evidence blames, and `occt-missed-minimum` (explained) means revdist's witnesses, \
+             on the true surfaces by the oracle's evaluation, are closer than OCCT's minimum.\n\n",
         );
         s.push_str("## Totals\n\n| check | cases | passed | explained | failed | worst separation | max usage (passed) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for c in [

@@ -48,10 +48,16 @@ pub fn run(opts: &Options) -> Result<Report, String> {
     let t0 = Instant::now();
     // Shapes, built once and shared read-only by the workers.
     let mut prepared: HashMap<Key, Arc<Prepared>> = HashMap::new();
-    let names = opts
-        .pairs
+    // Only the shapes of checks that run (tessellations are not free).
+    let mesh_pairs = if opts.poses > 0 { &opts.pairs[..] } else { &[] };
+    let convex_pairs = if opts.convex_poses > 0 {
+        &opts.convex_pairs[..]
+    } else {
+        &[]
+    };
+    let names = mesh_pairs
         .iter()
-        .chain(&opts.convex_pairs)
+        .chain(convex_pairs)
         .flat_map(|(a, b)| [a.clone(), b.clone()]);
     for name in names {
         for &eps in &opts.eps {
