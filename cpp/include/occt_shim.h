@@ -49,8 +49,13 @@ std::unique_ptr<OcctSolid> occt_torus(double major, double minor, double centre_
 // Minimum distance between `a` (at the identity) and `b` placed by `pose_b` (row-major 3x4
 // [R | t], 12 doubles). `deflection` is BRepExtrema's precision (the tolerance within which two
 // candidate distances count as equal; OCCT's default is Precision::Confusion() = 1e-7).
+// With `cached_classifiers`, OCCT's inner-solution test (each vertex of one solid classified
+// against the other, tolerance 1e-3) runs here with classifiers kept in the solids, and
+// BRepExtrema gets the solids' shells; otherwise BRepExtrema gets the solids and classifies
+// itself, building both classifiers on every call. The answers are the same.
 OcctDistanceOut occt_distance(const OcctSolid& a, const OcctSolid& b,
-                              rust::Slice<const double> pose_b, double deflection);
+                              rust::Slice<const double> pose_b, double deflection,
+                              bool cached_classifiers);
 
 // Counts of the solid's faces, edges and vertices (for reports and tests).
 rust::Vec<std::uint32_t> occt_topology(const OcctSolid& s);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
@@ -28,6 +30,7 @@
 #include <TopLoc_Location.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Solid.hxx>
 #include <gp_Ax1.hxx>
@@ -39,8 +42,23 @@
 
 namespace revdist_shim {
 
+// OCCT's own inner-solution test (BRepExtrema_DistShapeShape::Perform, 7.6) classifies each
+// vertex of one solid against the other with this tolerance.
+constexpr double kInnerTolerance = 0.001;
+
 struct OcctSolid::Impl {
   TopoDS_Shape shape;
+  // The solid's vertices (its local frame).
+  std::vector<gp_Pnt> vertices;
+  // The solid's point classifier, built on first use and kept: OCCT's Perform builds one per
+  // query for each solid (ray-face intersection polyhedra of every face), which dominates the
+  // time of a query on these models. Mutable: an Impl is only used by one thread.
+  mutable std::unique_ptr<BRepClass3d_SolidClassifier> classifier;
+
+  BRepClass3d_SolidClassifier& classify() const {
+    if (!classifier) classifier = std::make_unique<BRepClass3d_SolidClassifier>(shape);
+    return *classifier;
+  }
 };
 
 OcctSolid::OcctSolid(std::unique_ptr<Impl> i) : impl(std::move(i)) {}
@@ -157,8 +175,50 @@ double thread_cpu_seconds() {
 }
 
 std::unique_ptr<OcctSolid> wrap(TopoDS_Shape shape) {
-  return std::make_unique<OcctSolid>(
-      std::make_unique<OcctSolid::Impl>(OcctSolid::Impl{std::move(shape)}));
+  auto impl = std::make_unique<OcctSolid::Impl>();
+  TopTools_IndexedMapOfShape vertices;
+  TopExp::MapShapes(shape, TopAbs_VERTEX, vertices);
+  for (int i = 1; i <= vertices.Extent(); ++i) {
+    impl->vertices.push_back(BRep_Tool::Pnt(TopoDS::Vertex(vertices(i))));
+  }
+  impl->shape = std::move(shape);
+  return std::make_unique<OcctSolid>(std::move(impl));
+}
+
+// The shells of a solid as one compound: BRepExtrema treats it like the solid's boundary but
+// skips the solid classification (done by the caller with cached classifiers).
+TopoDS_Shape boundary(const TopoDS_Shape& solid) {
+  TopoDS_Compound c;
+  BRep_Builder builder;
+  builder.MakeCompound(c);
+  for (TopExp_Explorer e(solid, TopAbs_SHELL); e.More(); e.Next()) builder.Add(c, e.Current());
+  return c;
+}
+
+// OCCT's inner-solution test with the solids' cached classifiers, in OCCT's order: the
+// vertices of B (placed by trsf) in A, then the vertices of A in B. Returns the first vertex
+// found inside, in A's frame.
+bool inner_vertex(const OcctSolid::Impl& a, const OcctSolid::Impl& b, const gp_Trsf& trsf,
+                  gp_Pnt& found) {
+  BRepClass3d_SolidClassifier& ca = a.classify();
+  for (const gp_Pnt& v : b.vertices) {
+    const gp_Pnt p = v.Transformed(trsf);
+    ca.Perform(p, kInnerTolerance);
+    if (ca.State() == TopAbs_IN) {
+      found = p;
+      return true;
+    }
+  }
+  BRepClass3d_SolidClassifier& cb = b.classify();
+  const gp_Trsf inverse = trsf.Inverted();
+  for (const gp_Pnt& v : a.vertices) {
+    cb.Perform(v.Transformed(inverse), kInnerTolerance);
+    if (cb.State() == TopAbs_IN) {
+      found = v;
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -222,7 +282,8 @@ std::unique_ptr<OcctSolid> occt_torus(double major, double minor, double centre_
 }
 
 OcctDistanceOut occt_distance(const OcctSolid& a, const OcctSolid& b,
-                              rust::Slice<const double> pose_b, double deflection) {
+                              rust::Slice<const double> pose_b, double deflection,
+                              bool cached_classifiers) {
   detail::check_pose(pose_b, "occt_distance pose_b", /*rigid=*/true);
   if (!(std::isfinite(deflection) && deflection > 0.0)) {
     throw std::invalid_argument("occt_distance: deflection must be finite and positive");
@@ -231,14 +292,28 @@ OcctDistanceOut occt_distance(const OcctSolid& a, const OcctSolid& b,
     gp_Trsf trsf;
     trsf.SetValues(pose_b[0], pose_b[1], pose_b[2], pose_b[3], pose_b[4], pose_b[5], pose_b[6],
                    pose_b[7], pose_b[8], pose_b[9], pose_b[10], pose_b[11]);
-    const TopoDS_Shape placed = b.impl->shape.Located(TopLoc_Location(trsf));
+    OcctDistanceOut out{};
     const double cpu0 = thread_cpu_seconds();
-    BRepExtrema_DistShapeShape dist(a.impl->shape, placed, deflection, Extrema_ExtFlag_MIN);
+    if (cached_classifiers) {
+      gp_Pnt p;
+      if (inner_vertex(*a.impl, *b.impl, trsf, p)) {
+        out.cpu_seconds = thread_cpu_seconds() - cpu0;
+        out.distance = 0.0;
+        out.inner = true;
+        out.solutions = 1;
+        out.point_a = {p.X(), p.Y(), p.Z()};
+        out.point_b = out.point_a;
+        return out;
+      }
+    }
+    const TopoDS_Shape sa = cached_classifiers ? boundary(a.impl->shape) : a.impl->shape;
+    const TopoDS_Shape sb = cached_classifiers ? boundary(b.impl->shape) : b.impl->shape;
+    const TopoDS_Shape placed = sb.Located(TopLoc_Location(trsf));
+    BRepExtrema_DistShapeShape dist(sa, placed, deflection, Extrema_ExtFlag_MIN);
     const double cpu1 = thread_cpu_seconds();
     if (!dist.IsDone() || dist.NbSolution() < 1) {
       throw std::runtime_error("no solution (IsDone() is false)");
     }
-    OcctDistanceOut out{};
     out.distance = dist.Value();
     out.inner = dist.InnerSolution();
     out.solutions = static_cast<std::uint32_t>(dist.NbSolution());

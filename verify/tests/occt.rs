@@ -119,6 +119,25 @@ fn nested_solids_are_an_inner_solution() {
     assert!(d.overlap && d.upper == 0.0, "revdist: {d:?}");
 }
 
+/// The shim's inner-solution test with cached classifiers and BRepExtrema on the shells gives
+/// OCCT's own answer (BRepExtrema on the solids, classifying itself).
+#[test]
+fn cached_classifiers_give_occts_answer() {
+    let pawn = OcctSolid::from_profile(&revdist::models::model("pawn").unwrap()).unwrap();
+    let cup = OcctSolid::from_profile(&revdist::models::model("cup").unwrap()).unwrap();
+    let rot = UnitQuaternion::from_euler_angles(0.3, -0.7, 1.1);
+    for (x, z) in [(1.5, 0.2), (0.9, 0.4), (0.2, 0.3), (0.0, 0.5)] {
+        let pose = Isometry3::from_parts(Translation3::new(x, 0.1, z), rot);
+        let c = pawn.distance(&cup, &pose).unwrap();
+        let u = pawn.distance_uncached(&cup, &pose).unwrap();
+        assert_eq!(
+            (c.distance, c.inner, c.point_a, c.point_b),
+            (u.distance, u.inner, u.point_a, u.point_b),
+            "pose ({x}, {z})"
+        );
+    }
+}
+
 #[test]
 fn bad_input_is_an_error() {
     let e = OcctSolid::torus(0.5, 1.0, 0.0).unwrap_err().to_string();

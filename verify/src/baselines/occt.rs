@@ -19,6 +19,9 @@
 //!   `InnerSolution()` and distance 0. Otherwise the answer is the distance between the
 //!   boundaries, so a solid nested inside the other with its few vertices within 1e-3 of the
 //!   other's boundary is reported at its surface distance (revdist reports the solids' 0).
+//!   [`OcctSolid::distance`] runs this same test in the shim with classifiers built once per
+//!   solid (OCCT rebuilds both on every call, most of a query's time on these models) and
+//!   hands BRepExtrema the shells; [`OcctSolid::distance_uncached`] is OCCT's own call.
 //!
 //! Without OCCT installed, `verify` still builds (`cfg(revdist_occt)` unset by `build.rs`) and
 //! every function here returns [`BaselineError::Missing`].
@@ -241,11 +244,32 @@ impl OcctSolid {
     }
 
     /// Distance between `self` at the identity and `other` placed by `pose_b`, with
-    /// `Extrema_ExtFlag_MIN` and the deflection [`OCCT_DEFLECTION`].
+    /// `Extrema_ExtFlag_MIN` and the deflection [`OCCT_DEFLECTION`]. OCCT's inner-solution
+    /// test runs in the shim with classifiers kept in the solids (built on first use), and
+    /// BRepExtrema gets the shells: the same answer as [`OcctSolid::distance_uncached`], which
+    /// rebuilds both classifiers on every call (`verify/tests/occt.rs` compares them).
     pub fn distance(
         &self,
         other: &OcctSolid,
         pose_b: &Isometry3<f64>,
+    ) -> Result<OcctDistance, BaselineError> {
+        self.distance_with(other, pose_b, true)
+    }
+
+    /// `BRepExtrema_DistShapeShape` on the two solids as OCCT does it, classification included.
+    pub fn distance_uncached(
+        &self,
+        other: &OcctSolid,
+        pose_b: &Isometry3<f64>,
+    ) -> Result<OcctDistance, BaselineError> {
+        self.distance_with(other, pose_b, false)
+    }
+
+    fn distance_with(
+        &self,
+        other: &OcctSolid,
+        pose_b: &Isometry3<f64>,
+        cached: bool,
     ) -> Result<OcctDistance, BaselineError> {
         #[cfg(revdist_occt)]
         {
@@ -255,6 +279,7 @@ impl OcctSolid {
                 &other.inner,
                 &pose_rows(pose_b),
                 OCCT_DEFLECTION,
+                cached,
             )
             .map_err(BaselineError::cpp(LIBRARY))?;
             let time = start.elapsed();
@@ -279,7 +304,7 @@ impl OcctSolid {
         }
         #[cfg(not(revdist_occt))]
         {
-            let _ = (other, pose_b);
+            let _ = (other, pose_b, cached);
             Err(missing())
         }
     }

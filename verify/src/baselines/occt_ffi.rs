@@ -38,6 +38,7 @@ pub(crate) mod ffi {
             b: &OcctSolid,
             pose_b: &[f64],
             deflection: f64,
+            cached_classifiers: bool,
         ) -> Result<OcctDistanceOut>;
         fn occt_topology(s: &OcctSolid) -> Vec<u32>;
         fn occt_version() -> String;
