@@ -40,14 +40,15 @@ impl Times {
     }
 }
 
-/// (per pair, per family, eps in order) of the OCCT records; `None` without any.
-fn collect(
-    report: &Report,
-) -> Option<(
+/// Times grouped by pair and by family, and the sweep's eps (as bits, descending).
+type Grouped = (
     BTreeMap<(String, String), Times>,
     BTreeMap<&'static str, Times>,
     Vec<u64>,
-)> {
+);
+
+/// The OCCT records' times, grouped; `None` without any.
+fn collect(report: &Report) -> Option<Grouped> {
     let occt: Vec<&CaseRecord> = report
         .records
         .iter()
