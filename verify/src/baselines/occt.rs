@@ -29,7 +29,9 @@
 use super::BaselineError;
 use nalgebra::{Isometry3, Point3};
 use revdist::profile::{Profile, ProfileKind};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+#[cfg(revdist_occt)]
+use std::time::Instant;
 
 #[cfg(revdist_occt)]
 use super::occt_ffi::ffi;
@@ -192,7 +194,7 @@ impl OcctSolid {
         }
         #[cfg(not(revdist_occt))]
         {
-            let _ = (profile, ProfileKind::Closed, Instant::now());
+            let _ = profile;
             Err(missing())
         }
     }
