@@ -24,8 +24,12 @@
 //!   (`revdist-lower-wrong`); otherwise OCCT's points are off its surfaces (`occt-points-off`).
 //! * revdist *below* OCCT: revdist's witnesses, checked the same way, realise a distance below
 //!   OCCT's minus its tolerance, so OCCT missed the minimum (`occt-missed-minimum`, explained:
-//!   two points on the true surfaces closer than OCCT's minimum); if they are off the
-//!   surfaces, revdist's upper bound is suspect (`revdist-witness-off`, failed).
+//!   two points on the true surfaces closer than OCCT's minimum); otherwise the evidence is
+//!   `inconclusive` (failed).
+//! * OCCT's `InnerSolution()` (distance 0) against revdist's positive lower bound: the vertex
+//!   OCCT found inside is classified by the oracle; on one surface and outside the other solid
+//!   by more than OCCT's own tolerance 1e-3, it proves OCCT's classifier wrong
+//!   (`occt-false-inner`, explained).
 //!
 //! # Poses
 //!
@@ -64,6 +68,14 @@ pub const ON_SURFACE_REL: f64 = 1e-9;
 /// The note of a case where OCCT missed the minimum (counted as explained, see the module
 /// documentation).
 pub const OCCT_MISSED: &str = "occt-missed-minimum";
+
+/// The note of a case where OCCT's inner-solution vertex lies outside the other solid by more
+/// than OCCT's classification tolerance (counted as explained).
+pub const OCCT_FALSE_INNER: &str = "occt-false-inner";
+
+/// OCCT's tolerance when it classifies a vertex against a solid
+/// (`BRepExtrema_DistShapeShape::Perform`, 7.6: `tol = 0.001`).
+pub const OCCT_INNER_TOLERANCE: f64 = 1e-3;
 
 /// Which family a pair belongs to (for the timing table).
 pub fn family(a: &str, b: &str) -> &'static str {
@@ -223,6 +235,15 @@ fn pose_rng(seed: u64, a: &str, b: &str, index: usize) -> SplitMix64 {
 
 /// Distance from world point `p` to the true surface of `s` placed by `pose` (the oracle's
 /// own profile evaluation, in the meridian half-plane of `p`).
+/// Signed distance (negative inside) from world point `p` to the solid of `s` placed by
+/// `pose`, by the oracle's winding-number containment and its own profile evaluation.
+fn signed(s: &Shape, pose: &Isometry3<f64>, p: &Point3<f64>) -> f64 {
+    let l = pose.inverse_transform_point(p);
+    crate::oracle::index(&s.profile)
+        .signed([l.x.hypot(l.y), l.z])
+        .value
+}
+
 fn off_surface(s: &Shape, pose: &Isometry3<f64>, p: &Point3<f64>) -> f64 {
     let l = pose.inverse_transform_point(p);
     let q = [l.x.hypot(l.y), l.z];
@@ -283,7 +304,7 @@ fn occt_job(
             let mut judgement = judgement;
             let note = if judgement.verdict == Verdict::Failed {
                 let note = blame(a, b, &iso, &o, &d, slack);
-                if note == OCCT_MISSED {
+                if note == OCCT_MISSED || note == OCCT_FALSE_INNER {
                     // revdist's witnesses, on the true surfaces by the oracle's evaluation,
                     // realise a smaller distance: OCCT's answer is not the minimum.
                     judgement.verdict = Verdict::Explained;
@@ -333,7 +354,20 @@ fn blame(
             + off_surface(b, iso, pb)
             + 2.0 * on
     };
-    if d.lower > o.distance {
+    if o.inner && d.lower > 0.0 {
+        // The vertex OCCT found inside lies on one solid's surface; the oracle classifies it
+        // against both: outside both by more than OCCT's tolerance means OCCT misclassified.
+        let p = &o.point_a;
+        let outside = signed(a, &Isometry3::identity(), p).max(signed(b, iso, p));
+        let own = signed(a, &Isometry3::identity(), p)
+            .abs()
+            .min(signed(b, iso, p).abs());
+        if own <= on && outside > OCCT_INNER_TOLERANCE {
+            OCCT_FALSE_INNER
+        } else {
+            "inconclusive"
+        }
+    } else if d.lower > o.distance {
         if d.lower > realised(&o.point_a, &o.point_b) + slack {
             "revdist-lower-wrong"
         } else {
@@ -344,6 +378,6 @@ fn blame(
     } else if realised(&d.point_a, &d.point_b) < o.distance - OCCT_TOLERANCE - slack {
         OCCT_MISSED
     } else {
-        "revdist-witness-off"
+        "inconclusive"
     }
 }
