@@ -2,13 +2,15 @@
 # Installs the Debian packages revdist's harness needs, only when some are missing.
 # Core library: nothing (pure Rust). verify/: GMP + MPFR for exact arithmetic (rug with system libs),
 # and the C++ baselines bridged with cxx (verify/build.rs, cpp/): FCL 0.7 (pulls in octomap),
-# libccd 2.1, CGAL 5.5 (header-only; pulls in Boost) and Eigen 3. python/ (scripts/python-test.sh):
-# Python 3 with its venv and pip modules. experiments/' peers benchmark: coal 3 from PyPI's libcoal
-# wheel (C++ headers and libcoal.so under cmeel.prefix/), installed with pip into .peers/coal in the
-# checkout (git-ignored; nothing system-wide).
+# libccd 2.1, CGAL 5.5 (header-only; pulls in Boost) and Eigen 3; OpenCASCADE 7.6 (the exact
+# B-rep reference; a header it needs ships only in libocct-visualization-dev; libtbb12 at run time).
+# python/ (scripts/python-test.sh): Python 3 with its venv and pip modules. experiments/' peers
+# benchmark: coal 3 from PyPI's libcoal wheel (C++ headers and libcoal.so under cmeel.prefix/),
+# installed with pip into .peers/coal in the checkout (git-ignored; nothing system-wide).
 # Usage: scripts/deps.sh [extra packages...]
 set -euo pipefail
 packages=(pkg-config m4 libgmp-dev libmpfr-dev libfcl-dev libccd-dev libcgal-dev libeigen3-dev
+  libocct-modeling-algorithms-dev libocct-visualization-dev libtbb12
   python3 python3-venv python3-pip "$@")
 missing=()
 for p in "${packages[@]}"; do

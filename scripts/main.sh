@@ -35,10 +35,10 @@ step() {  # step NAME COMMAND...: run, time, record
 }
 
 if [ ${#paper[@]} -eq 0 ]; then
-    fcl_poses=(--poses 100 --poses-1e-5 50); query_poses=(--poses 100); cross=(--poses 100)
+    fcl_poses=(--poses 100 --poses-1e-5 50); query_poses=(--poses 100); cross=(--poses 100); occt=(--occt-poses 200)
     toi_motions=(--motions 3)
 else
-    fcl_poses=(--paper); query_poses=(--poses 1000); cross=(--poses 1000)
+    fcl_poses=(--paper); query_poses=(--poses 1000); cross=(--poses 1000); occt=(--occt-poses 400)
     toi_motions=(--motions 30)
 fi
 
@@ -54,7 +54,8 @@ step motion       $bin/motion --out "$out" "${paper[@]}"                      # 
 step deforming    $bin/deforming --out "$out" "${paper[@]}"                   # Figure 8: static models vs M_t
 step pareto       $bin/pareto --out "$out" "${paper[@]}"                      # accuracy vs time, build, memory
 step stability    $bin/stability --out "$out" "${paper[@]}"                   # degenerate families, exact references
-step crosscheck   $bin/verify crosscheck --out "$out/crosscheck" "${cross[@]}"  # vs FCL, CGAL, libccd
+step crosscheck   $bin/verify crosscheck --out "$out/crosscheck" "${cross[@]}" --occt-poses 0  # vs FCL, CGAL, libccd
+step occt         $bin/verify crosscheck --out "$out/crosscheck-occt" --poses 0 --convex-poses 0 "${occt[@]}"  # vs OpenCASCADE on the true surfaces
 step kernels      $bin/patch_kernels --out "$out"                            # leaf kernels near contact
 step scenes       bash -c 'for f in experiments/scenes/*.toml; do '"$bin"'/revdist-scene "$f" --out '"$out"'/scenes > /dev/null || exit 1; done'  # example scenes: CSV + cost summaries
 echo "total $SECONDS s" | tee -a "$timing" >&2

@@ -1,4 +1,5 @@
-//! Builds the C++ baselines of `verify` (FCL 0.7, libccd 2.1, CGAL 5.5; see
+//! Builds the C++ baselines of `verify` (FCL 0.7, libccd 2.1, CGAL 5.5, and OpenCASCADE 7.6
+//! when installed; see
 //! `docs/verification.md`, "Building the baselines", and `src/baselines/mod.rs`).
 //!
 //! Layout: the shims are in `cpp/` at the workspace root, one per library
@@ -6,7 +7,14 @@
 //! `cpp/src/common.h`). Two cxx bridges: `src/baselines/mod.rs` (FCL + libccd) and
 //! `src/baselines/cgal_ffi.rs` (CGAL).
 //!
-//! Four static libraries, compiled concurrently, each skipped when a stamp of its inputs (the
+//! OpenCASCADE is optional: when its headers and libraries are found ([`occt`]), two more
+//! static libraries (its bridge and its shim, `cpp/src/occt_shim.cc`) are built and
+//! `cfg(revdist_occt)` is set; otherwise a warning says so and `verify` builds without it (the
+//! OCCT cross-check then reports "OCCT missing: run scripts/deps.sh"). Debian 12's OCCT 7.6.3
+//! has no pkg-config file; its headers are in `/usr/include/opencascade` and one of them
+//! (`NCollection_AliasedArray.hxx`) ships only in `libocct-visualization-dev`.
+//!
+//! Four static libraries (six with OCCT), compiled concurrently, each skipped when a stamp of its inputs (the
 //! sources, the cxx-generated headers it includes, the compiler and its flags, the library
 //! versions) is unchanged. `cc` itself always recompiles everything, and the CGAL translation
 //! unit alone takes ~15 s and ~0.9 GB: the stamps make an edit of the FCL shim (or of the Rust
@@ -35,6 +43,7 @@ const SHIM_OPT_LEVEL: u32 = 2;
 /// Name prefix of the generated headers (`#include "verify/src/baselines/mod.rs.h"`).
 const BRIDGE_FCL_CCD: &str = "src/baselines/mod.rs";
 const BRIDGE_CGAL: &str = "src/baselines/cgal_ffi.rs";
+const BRIDGE_OCCT: &str = "src/baselines/occt_ffi.rs";
 
 const INSTALL_HINT: &str = "run scripts/deps.sh (apt-get install libfcl-dev libccd-dev \
                             libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev pkg-config)";
@@ -89,6 +98,7 @@ fn main() {
 
     // The bridges' generated code (cheap) and the generated headers the shims include.
     let bridge_build = cxx_build::bridges([BRIDGE_FCL_CCD, BRIDGE_CGAL]);
+    let occt = occt::probe();
     let generated = out_dir.join("cxxbridge/include");
     let gen_header = |bridge: &str| generated.join("verify").join(format!("{bridge}.h"));
     let gen_source = |bridge: &str| {
@@ -133,7 +143,7 @@ fn main() {
         v.extend_from_slice(extra);
         v
     };
-    let libs = vec![
+    let mut libs = vec![
         Lib {
             name: "revdist_cxxbridge",
             build: bridge,
@@ -165,6 +175,42 @@ fn main() {
             ]),
         },
     ];
+    println!("cargo::rustc-check-cfg=cfg(revdist_occt)");
+    match &occt {
+        Ok(found) => {
+            let bridge = configure(cxx_build::bridge(BRIDGE_OCCT));
+            let mut shim = configure(cc::Build::new());
+            shim.file(cpp_src.join("occt_shim.cc"))
+                .flag(format!("-isystem{}", found.include.display()));
+            let occt_inputs = |extra: &[PathBuf]| {
+                let mut v = vec![
+                    cxx_header.clone(),
+                    gen_header(BRIDGE_OCCT),
+                    cpp_src.join("common.h"),
+                    cpp_include.join("occt_shim.h"),
+                    // The version as a pseudo-input: its name is hashed (it is no file).
+                    PathBuf::from(format!("occt {}", found.version)),
+                ];
+                v.extend_from_slice(extra);
+                v
+            };
+            libs.push(Lib {
+                name: "revdist_occt_bridge",
+                build: bridge,
+                inputs: occt_inputs(&[gen_source(BRIDGE_OCCT)]),
+            });
+            libs.push(Lib {
+                name: "revdist_occt_shim",
+                build: shim,
+                inputs: occt_inputs(&[cpp_src.join("occt_shim.cc")]),
+            });
+            println!("cargo:rustc-cfg=revdist_occt");
+        }
+        Err(why) => println!(
+            "cargo:warning=OpenCASCADE not found ({why}): verify builds without the OCCT \
+             cross-check; run scripts/deps.sh to install it"
+        ),
+    }
 
     // The slowest library first, so it starts while the others compile on the other core.
     std::thread::scope(|s| {
@@ -179,7 +225,16 @@ fn main() {
         println!("cargo:rustc-link-lib=static={}", lib.name);
     }
     println!("cargo:rustc-link-search=native={}", out_dir.display());
+    if let Ok(found) = &occt {
+        println!("cargo:rustc-link-search=native={}", found.lib.display());
+        for lib in occt::LIBS {
+            println!("cargo:rustc-link-lib=dylib={lib}");
+        }
+    }
     for f in [
+        "../cpp/include/occt_shim.h",
+        "../cpp/src/occt_shim.cc",
+        BRIDGE_OCCT,
         "../cpp/include/fcl_shim.h",
         "../cpp/include/ccd_shim.h",
         "../cpp/include/cgal_shim.h",
@@ -193,7 +248,7 @@ fn main() {
     ] {
         println!("cargo:rerun-if-changed={f}");
     }
-    for var in ["CXX", "CXXFLAGS", "CC", "CFLAGS"] {
+    for var in ["CXX", "CXXFLAGS", "CC", "CFLAGS", occt::DISABLE_VAR] {
         println!("cargo:rerun-if-env-changed={var}");
     }
 }
@@ -244,4 +299,76 @@ fn cgal_version() -> Option<String> {
                 .trim()
                 .to_owned()
         })
+}
+
+/// Finding OpenCASCADE (no pkg-config file in Debian 12's packages).
+mod occt {
+    use std::path::{Path, PathBuf};
+
+    /// Setting this variable (to anything) builds `verify` as if OCCT were missing (to check
+    /// that path).
+    pub const DISABLE_VAR: &str = "REVDIST_NO_OCCT";
+    /// Debian's header directory.
+    const INCLUDE: &str = "/usr/include/opencascade";
+    /// Debian's library directory on x86-64 and arm64.
+    const LIB_DIRS: [&str; 2] = ["/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu"];
+    /// Headers that must be present: the version, what the shim uses, and the one only
+    /// `libocct-visualization-dev` ships.
+    const HEADERS: [&str; 3] = [
+        "Standard_Version.hxx",
+        "BRepExtrema_DistShapeShape.hxx",
+        "NCollection_AliasedArray.hxx",
+    ];
+    /// Toolkits linked (BRepExtrema, BRepCheck, BRepBuilderAPI, BRepLib: TKTopAlgo;
+    /// BRepPrimAPI: TKPrim; the rest their dependencies).
+    pub const LIBS: [&str; 9] = [
+        "TKPrim",
+        "TKTopAlgo",
+        "TKGeomAlgo",
+        "TKBRep",
+        "TKGeomBase",
+        "TKG3d",
+        "TKG2d",
+        "TKMath",
+        "TKernel",
+    ];
+
+    pub struct Found {
+        pub include: PathBuf,
+        pub lib: PathBuf,
+        pub version: String,
+    }
+
+    pub fn probe() -> Result<Found, String> {
+        if std::env::var_os(DISABLE_VAR).is_some() {
+            return Err(format!("{DISABLE_VAR} is set"));
+        }
+        let include = PathBuf::from(INCLUDE);
+        for h in HEADERS {
+            if !include.join(h).exists() {
+                return Err(format!(
+                    "{INCLUDE}/{h} is missing; it ships in libocct-modeling-algorithms-dev \
+                     and libocct-visualization-dev"
+                ));
+            }
+        }
+        let lib = LIB_DIRS
+            .iter()
+            .map(Path::new)
+            .find(|d| LIBS.iter().all(|l| d.join(format!("lib{l}.so")).exists()))
+            .ok_or_else(|| format!("the libraries {LIBS:?} (lib*.so) are missing"))?
+            .to_path_buf();
+        let text = std::fs::read_to_string(include.join("Standard_Version.hxx"))
+            .map_err(|e| format!("reading Standard_Version.hxx: {e}"))?;
+        let version = text
+            .lines()
+            .find_map(|l| l.strip_prefix("#define OCC_VERSION_COMPLETE"))
+            .map(|v| v.trim().trim_matches('"').to_owned())
+            .ok_or("no OCC_VERSION_COMPLETE in Standard_Version.hxx")?;
+        Ok(Found {
+            include,
+            lib,
+            version,
+        })
+    }
 }

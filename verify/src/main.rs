@@ -92,6 +92,15 @@ enum Command {
         /// Eps of trees and meshes (repeat the flag or separate by commas).
         #[arg(long, value_delimiter = ',', default_values_t = verify::crosscheck::options::DEFAULT_EPS.to_vec())]
         eps: Vec<f64>,
+        /// Poses per pair of the OpenCASCADE sweep (0: leave it out).
+        #[arg(long, default_value_t = verify::crosscheck::options::DEFAULT_OCCT_POSES)]
+        occt_poses: usize,
+        /// Eps of revdist's trees judged against OCCT.
+        #[arg(long, value_delimiter = ',', default_values_t = verify::crosscheck::options::DEFAULT_OCCT_EPS.to_vec())]
+        occt_eps: Vec<f64>,
+        /// Only the OCCT pairs whose names contain this (e.g. "pawn", "_ff", "morph").
+        #[arg(long)]
+        occt_only: Option<String>,
         /// Output directory of the report.
         #[arg(long, default_value = "figures/crosscheck")]
         out: std::path::PathBuf,
@@ -242,14 +251,20 @@ fn main() {
             poses,
             convex_poses,
             eps,
+            occt_poses,
+            occt_eps,
+            occt_only,
             out,
             quick,
             seed,
             threads,
         } => std::process::exit(crosscheck_command(
-            poses,
-            convex_poses,
+            (poses, convex_poses, occt_poses),
             eps,
+            OcctSweep {
+                eps: occt_eps,
+                only: occt_only,
+            },
             &out,
             quick,
             seed,
@@ -271,14 +286,20 @@ fn main() {
     }
 }
 
-/// Poses per mesh pair and per convex pair of `verify crosscheck --quick`.
-const QUICK_POSES: (usize, usize) = (8, 4);
+/// Poses per mesh pair, per convex pair and per OCCT pair of `verify crosscheck --quick`.
+const QUICK_POSES: (usize, usize, usize) = (8, 4, 4);
+
+/// The OCCT sweep's eps and pair filter.
+struct OcctSweep {
+    eps: Vec<f64>,
+    only: Option<String>,
+}
 
 /// Runs the cross-check and writes its report; the exit code (0 clean, 1 failures, 2 error).
 fn crosscheck_command(
-    poses: usize,
-    convex_poses: usize,
+    (poses, convex_poses, occt_poses): (usize, usize, usize),
     eps: Vec<f64>,
+    occt: OcctSweep,
     out: &std::path::Path,
     quick: bool,
     seed: u64,
@@ -288,18 +309,41 @@ fn crosscheck_command(
         eprintln!("error: --eps needs numbers in (0, 1), got {eps:?}");
         return 2;
     }
-    let (poses, convex_poses) = if quick {
+    if occt.eps.is_empty()
+        || occt
+            .eps
+            .iter()
+            .any(|e| !(e.is_finite() && *e > 0.0 && *e < 1.0))
+    {
+        eprintln!(
+            "error: --occt-eps needs numbers in (0, 1), got {:?}",
+            occt.eps
+        );
+        return 2;
+    }
+    let (poses, convex_poses, occt_poses) = if quick {
         QUICK_POSES
     } else {
-        (poses, convex_poses)
+        (poses, convex_poses, occt_poses)
     };
-    if poses == 0 && convex_poses == 0 {
-        eprintln!("error: --poses and --convex-poses are both 0: nothing to check");
+    if poses == 0 && convex_poses == 0 && occt_poses == 0 {
+        eprintln!("error: --poses, --convex-poses and --occt-poses are all 0: nothing to check");
         return 2;
+    }
+    let mut occt_pairs = verify::crosscheck::occt::occt_pairs();
+    if let Some(only) = &occt.only {
+        occt_pairs.retain(|(a, b)| a.contains(only.as_str()) || b.contains(only.as_str()));
+        if occt_pairs.is_empty() {
+            eprintln!("error: --occt-only '{only}' matches no OCCT pair");
+            return 2;
+        }
     }
     let opts = verify::crosscheck::Options {
         poses,
         convex_poses,
+        occt_poses,
+        occt_eps: occt.eps,
+        occt_pairs,
         eps,
         seed,
         threads,

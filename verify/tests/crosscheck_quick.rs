@@ -15,6 +15,8 @@ fn crosscheck_quick_slice_has_no_failures() {
         poses: POSES,
         convex_poses: CONVEX_POSES,
         eps: verify::crosscheck::options::DEFAULT_EPS.to_vec(),
+        // The OCCT sweep has its own test (occt.rs).
+        occt_poses: 0,
         ..Options::default()
     };
     let report = run(&opts).expect("cross-check runs");

@@ -1,5 +1,6 @@
 //! C++ baselines through `cxx`: FCL 0.7 meshes ([`fcl`]), libccd 2.1 on convex point sets
-//! ([`ccd`]) and CGAL 5.5 exact references ([`cgal`]).
+//! ([`ccd`]), CGAL 5.5 exact references ([`cgal`]) and, when installed, OpenCASCADE 7.6 on the
+//! true curved surfaces ([`occt`], bridge `occt_ffi.rs`).
 //!
 //! The C++ shims live in `cpp/` at the workspace root (headers in `cpp/include`, sources in
 //! `cpp/src`) and are compiled by `verify/build.rs`; the core crate `revdist` stays free of
@@ -19,6 +20,9 @@ pub mod ccd;
 pub mod cgal;
 mod cgal_ffi;
 pub mod fcl;
+pub mod occt;
+#[cfg(revdist_occt)]
+mod occt_ffi;
 
 use nalgebra::{Isometry3, Point3};
 
@@ -162,6 +166,12 @@ pub enum BaselineError {
     Cpp {
         library: &'static str,
         message: String,
+    },
+    /// An optional library was not found when `verify` was built.
+    #[error("{hint}")]
+    Missing {
+        library: &'static str,
+        hint: &'static str,
     },
 }
 

@@ -1,5 +1,6 @@
-//! Cross-check of revdist against FCL on certified meshes, and against CGAL and libccd on
-//! convex pairs (`docs/verification.md`, section 4).
+//! Cross-check of revdist against FCL on certified meshes, against CGAL and libccd on
+//! convex pairs, and against OpenCASCADE on the true curved surfaces ([`occt`], its own
+//! criterion and poses) (`docs/verification.md`, section 4).
 //!
 //! # What is compared
 //!
@@ -68,6 +69,8 @@
 
 pub mod convex;
 pub mod criterion;
+pub mod occt;
+pub mod occt_times;
 pub mod options;
 pub mod poses;
 pub mod report;

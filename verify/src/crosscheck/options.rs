@@ -8,6 +8,12 @@ pub const DEFAULT_POSES: usize = 100;
 pub const DEFAULT_CONVEX_POSES: usize = 20;
 /// Default eps values (two decades, as in the committed reports).
 pub const DEFAULT_EPS: [f64; 2] = [1e-3, 1e-4];
+/// Default poses per pair of the OCCT sweep (issue 28: at least 200 per pair). 45 pairs x 200
+/// poses at 5-20 ms per OCCT query: about 1.5 minutes on 2 cores.
+pub const DEFAULT_OCCT_POSES: usize = 200;
+/// Eps of revdist's trees in the OCCT sweep: the default of the mesh check, and 1e-7, where
+/// revdist's interval (2e-7 wide) is as sharp as OCCT's tolerance and 1e-6 gaps are resolved.
+pub const DEFAULT_OCCT_EPS: [f64; 2] = [1e-4, 1e-7];
 /// What to run.
 #[derive(Debug, Clone)]
 pub struct Options {
@@ -23,6 +29,12 @@ pub struct Options {
     pub pairs: Vec<(String, String)>,
     /// Convex pairs (default: [`convex_pairs`]).
     pub convex_pairs: Vec<(String, String)>,
+    /// Poses per pair of the OCCT sweep (0 leaves it out; one OCCT query per pose).
+    pub occt_poses: usize,
+    /// Eps of revdist's trees judged against each OCCT answer.
+    pub occt_eps: Vec<f64>,
+    /// Pairs of the OCCT sweep (default: [`super::occt::occt_pairs`]).
+    pub occt_pairs: Vec<(String, String)>,
 }
 
 impl Default for Options {
@@ -35,6 +47,9 @@ impl Default for Options {
             threads: 0,
             pairs: default_pairs(),
             convex_pairs: convex_pairs(),
+            occt_poses: DEFAULT_OCCT_POSES,
+            occt_eps: DEFAULT_OCCT_EPS.to_vec(),
+            occt_pairs: super::occt::occt_pairs(),
         }
     }
 }

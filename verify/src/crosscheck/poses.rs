@@ -7,6 +7,7 @@ use crate::queries::PoseSpec;
 use crate::random_profiles::SplitMix64;
 use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 use revdist::query::{distance, QueryOptions};
+use revdist::solid::Solid;
 
 /// Gap range (length units) of separated poses.
 pub const SEPARATED_GAPS: (f64, f64) = (0.1, 1.0);
@@ -58,19 +59,39 @@ impl PoseKind {
     }
 }
 
+/// What placing B relative to A needs of a shape: its solid at the identity, the height of its
+/// axis centre and the radius of a ball about that centre holding it.
+pub trait PoseTarget {
+    fn solid(&self) -> &Solid;
+    fn centre_z(&self) -> f64;
+    fn radius(&self) -> f64;
+}
+
+impl PoseTarget for Prepared {
+    fn solid(&self) -> &Solid {
+        &self.solid
+    }
+    fn centre_z(&self) -> f64 {
+        self.centre_z
+    }
+    fn radius(&self) -> f64 {
+        self.radius
+    }
+}
+
 fn spec(t: Vector3<f64>, q: &UnitQuaternion<f64>) -> PoseSpec {
     PoseSpec::from_isometry(&Isometry3::from_parts(t.into(), *q))
 }
 
 /// B's pose with its axis centre at `A's centre + u s`, rotated by `q`.
-fn along(
-    a: &Prepared,
-    b: &Prepared,
+fn along<T: PoseTarget>(
+    a: &T,
+    b: &T,
     q: &UnitQuaternion<f64>,
     u: &Vector3<f64>,
     s: f64,
 ) -> PoseSpec {
-    let t = Vector3::new(0.0, 0.0, a.centre_z) + u * s - q * Vector3::new(0.0, 0.0, b.centre_z);
+    let t = Vector3::new(0.0, 0.0, a.centre_z()) + u * s - q * Vector3::new(0.0, 0.0, b.centre_z());
     spec(t, q)
 }
 
@@ -78,18 +99,18 @@ fn along(
 /// 1-Lipschitz in the slide parameter, so stepping by `lower - gap` never passes below `gap`.
 /// Returns the parameter reached (or `None` when A and B already meet far away, which cannot
 /// happen for bounded solids).
-fn approach(
-    a: &Prepared,
-    b: &Prepared,
+fn approach<T: PoseTarget>(
+    a: &T,
+    b: &T,
     q: &UnitQuaternion<f64>,
     u: &Vector3<f64>,
     gap: f64,
 ) -> Option<f64> {
     let opts = QueryOptions::default();
-    let mut s = a.radius + b.radius + gap + 1.0;
+    let mut s = a.radius() + b.radius() + gap + 1.0;
     for _ in 0..ADVANCE_STEPS {
         let pose = along(a, b, q, u, s).isometry();
-        let d = distance(&a.solid, &b.solid.with_pose(pose), &opts);
+        let d = distance(a.solid(), &b.solid().with_pose(pose), &opts);
         if d.overlap {
             return None;
         }
@@ -103,6 +124,17 @@ fn approach(
 
 /// A pose of B of the given kind, drawn from `rng`.
 pub fn make_pose(a: &Prepared, b: &Prepared, kind: PoseKind, rng: &mut SplitMix64) -> PoseSpec {
+    make_pose_in(a, b, kind, NEAR_GAPS, rng)
+}
+
+/// As [`make_pose`], with near-touching gaps drawn log-uniformly from `near`.
+pub fn make_pose_in<T: PoseTarget>(
+    a: &T,
+    b: &T,
+    kind: PoseKind,
+    near: (f64, f64),
+    rng: &mut SplitMix64,
+) -> PoseSpec {
     let r = rng.quaternion();
     let q = UnitQuaternion::from_quaternion(Quaternion::new(r[0], r[1], r[2], r[3]));
     let u = Vector3::from(rng.unit_vector());
@@ -111,20 +143,21 @@ pub fn make_pose(a: &Prepared, b: &Prepared, kind: PoseKind, rng: &mut SplitMix6
             let (lo, hi) = if kind == PoseKind::Separated {
                 SEPARATED_GAPS
             } else {
-                NEAR_GAPS
+                near
             };
             let gap = rng.log_range(lo, hi);
-            let s = approach(a, b, &q, &u, gap).unwrap_or(a.radius + b.radius + 1.0);
+            let s = approach(a, b, &q, &u, gap).unwrap_or(a.radius() + b.radius() + 1.0);
             along(a, b, &q, &u, s)
         }
         PoseKind::Overlapping => {
-            let depth = rng.log_range(OVERLAP_DEPTHS.0, OVERLAP_DEPTHS.1) * a.radius.min(b.radius);
-            let s = approach(a, b, &q, &u, NEAR_GAPS.0).unwrap_or(0.0);
+            let depth =
+                rng.log_range(OVERLAP_DEPTHS.0, OVERLAP_DEPTHS.1) * a.radius().min(b.radius());
+            let s = approach(a, b, &q, &u, near.0).unwrap_or(0.0);
             along(a, b, &q, &u, s - depth)
         }
         PoseKind::Inside => {
             // Uniform in A's bounding ball about its axis centre.
-            let r = a.radius * rng.unit().cbrt();
+            let r = a.radius() * rng.unit().cbrt();
             along(a, b, &q, &u, r)
         }
     }

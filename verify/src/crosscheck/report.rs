@@ -24,6 +24,9 @@ pub enum Check {
     Gjk,
     /// libccd GJK+EPA penetration depth of overlapping hulls.
     Penetration,
+    /// OpenCASCADE's B-rep distance on the true surfaces (`mesh_bounds` holds OCCT's
+    /// tolerance).
+    Occt,
 }
 
 impl Check {
@@ -33,6 +36,7 @@ impl Check {
             Check::Cgal => "cgal-hull",
             Check::Gjk => "ccd-gjk",
             Check::Penetration => "ccd-epa",
+            Check::Occt => "occt-brep",
         }
     }
 }
@@ -61,6 +65,8 @@ pub struct CaseRecord {
     /// Why an explained case is explained.
     pub note: &'static str,
     pub query_time: Duration,
+    /// The baseline's own time for the case, when measured (OCCT).
+    pub baseline_time: Option<Duration>,
 }
 
 /// What every check of one case shares: the shape pair, the pose and revdist's answer.
@@ -104,6 +110,7 @@ impl CaseRecord {
             judgement,
             note,
             query_time: ctx.query_time,
+            baseline_time: None,
         }
     }
 
@@ -244,14 +251,18 @@ impl Report {
     /// The Markdown report.
     pub fn markdown(&self) -> String {
         let o = &self.options;
-        let mut s = String::from("# revdist cross-check against FCL, CGAL and libccd\n\n");
+        let mut s =
+            String::from("# revdist cross-check against FCL, CGAL, libccd and OpenCASCADE\n\n");
         let _ = writeln!(
             s,
-            "Poses per mesh pair and eps: {}; per convex pair and eps: {}; eps: {:?}; seed {}; \
-             {} threads; shapes prepared in {:.1} s; wall time {:.1} s.\n",
+            "Poses per mesh pair and eps: {}; per convex pair and eps: {}; eps: {:?}; OCCT \
+             sweep: {} poses per pair, revdist at eps {:?}; seed {}; {} threads; shapes \
+             prepared in {:.1} s; wall time {:.1} s.\n",
             o.poses,
             o.convex_poses,
             o.eps,
+            o.occt_poses,
+            o.occt_eps,
             o.seed,
             self.threads,
             self.prepare_time.as_secs_f64(),
@@ -263,10 +274,20 @@ impl Report {
              plus a rounding slack of 1e-12 of the scale), `h` the meshes' certified Hausdorff \
              bounds. *Explained*: revdist 0 below the baseline's interval with a certified \
              point of one surface inside the other solid (nesting). `separation` > 0 means the \
-             intervals are disjoint by that much; `usage` = |value - d| / (h_a + h_b + width).\n\n",
+             intervals are disjoint by that much; `usage` = |value - d| / (h_a + h_b + width). \
+             OCCT (`occt-brep`, verify/src/crosscheck/occt.rs): the same test with OCCT's \
+             tolerance 1e-7 in place of h_a + h_b; a failed case's note says which side the \
+             evidence blames, and `occt-missed-minimum` (explained) means revdist's witnesses, \
+             on the true surfaces by the oracle's evaluation, are closer than OCCT's minimum.\n\n",
         );
         s.push_str("## Totals\n\n| check | cases | passed | explained | failed | worst separation | max usage (passed) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-        for c in [Check::Fcl, Check::Cgal, Check::Gjk, Check::Penetration] {
+        for c in [
+            Check::Fcl,
+            Check::Cgal,
+            Check::Gjk,
+            Check::Penetration,
+            Check::Occt,
+        ] {
             let t = self.total(Some(c));
             if t.cases > 0 {
                 let _ = writeln!(
@@ -311,6 +332,7 @@ impl Report {
                 t.max_usage
             );
         }
+        s.push_str(&super::occt_times::markdown(self));
         let all = self.total(None);
         s.push_str("\n## Reproducers\n\nEach line runs with `revdist distance --batch FILE`.\n\n");
         if let Some(i) = all.worst() {
@@ -373,6 +395,8 @@ impl Report {
             &[
                 ("poses", o.poses.to_string()),
                 ("convex_poses", o.convex_poses.to_string()),
+                ("occt_poses", o.occt_poses.to_string()),
+                ("occt_eps", format!("{:?}", o.occt_eps)),
                 ("eps", format!("{:?}", o.eps)),
                 ("seed", o.seed.to_string()),
                 ("threads", self.threads.to_string()),
@@ -392,13 +416,23 @@ impl Report {
             .filter(|r| r.judgement.verdict == Verdict::Failed)
             .map(|r| r.reproducer() + "\n")
             .collect();
+        let occt = super::occt_times::csv(self);
+        if !occt.is_empty() {
+            std::fs::write(dir.join("occt_times.csv"), prov.csv_preamble() + &occt)?;
+        }
         std::fs::write(dir.join("failures.jsonl"), failed)
     }
 
     /// A short text summary for the terminal.
     pub fn summary(&self) -> String {
         let mut s = String::new();
-        for c in [Check::Fcl, Check::Cgal, Check::Gjk, Check::Penetration] {
+        for c in [
+            Check::Fcl,
+            Check::Cgal,
+            Check::Gjk,
+            Check::Penetration,
+            Check::Occt,
+        ] {
             let t = self.total(Some(c));
             if t.cases > 0 {
                 let _ = writeln!(

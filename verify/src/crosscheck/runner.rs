@@ -41,13 +41,23 @@ pub fn run(opts: &Options) -> Result<Report, String> {
     if opts.eps.is_empty() || opts.eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
         return Err(format!("eps must be positive numbers, got {:?}", opts.eps));
     }
+    if opts.occt_poses > 0 {
+        // Before minutes of mesh checks: "OCCT missing: run scripts/deps.sh ...".
+        crate::baselines::occt::version().map_err(|e| e.to_string())?;
+    }
     let t0 = Instant::now();
     // Shapes, built once and shared read-only by the workers.
     let mut prepared: HashMap<Key, Arc<Prepared>> = HashMap::new();
-    let names = opts
-        .pairs
+    // Only the shapes of checks that run (tessellations are not free).
+    let mesh_pairs = if opts.poses > 0 { &opts.pairs[..] } else { &[] };
+    let convex_pairs = if opts.convex_poses > 0 {
+        &opts.convex_pairs[..]
+    } else {
+        &[]
+    };
+    let names = mesh_pairs
         .iter()
-        .chain(&opts.convex_pairs)
+        .chain(convex_pairs)
         .flat_map(|(a, b)| [a.clone(), b.clone()]);
     for name in names {
         for &eps in &opts.eps {
@@ -119,6 +129,7 @@ pub fn run(opts: &Options) -> Result<Report, String> {
         return Err(errors.join("\n"));
     }
     let mut records = records.into_inner().expect("records lock");
+    records.append(&mut super::occt::run(opts, threads)?);
     records.sort_by(|x, y| {
         (x.check, &x.a, &x.b, x.eps.to_bits(), x.index).cmp(&(
             y.check,
