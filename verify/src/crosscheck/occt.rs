@@ -24,7 +24,8 @@
 //!   (`revdist-lower-wrong`); otherwise OCCT's points are off its surfaces (`occt-points-off`).
 //! * revdist *below* OCCT: revdist's witnesses, checked the same way, realise a distance below
 //!   OCCT's minus its tolerance, so OCCT missed the minimum (`occt-missed-minimum`, explained:
-//!   two points on the true surfaces closer than OCCT's minimum); otherwise the evidence is
+//!   two points on the true surfaces closer than OCCT's minimum), or the oracle's own search
+//!   of the true surfaces realises such a pair (the same label); otherwise the evidence is
 //!   `inconclusive` (failed).
 //! * OCCT's `InnerSolution()` (distance 0) against revdist's positive lower bound: the vertex
 //!   OCCT found inside is classified by the oracle; on one surface and outside the other solid
@@ -378,6 +379,22 @@ fn blame(
     } else if realised(&d.point_a, &d.point_b) < o.distance - OCCT_TOLERANCE - slack {
         OCCT_MISSED
     } else {
-        "inconclusive"
+        // revdist's witnesses lie on its approximating surfaces (within eps of the true ones),
+        // too coarse to show a miss just past OCCT's tolerance: the oracle's own search of
+        // the true surfaces (`crate::oracle::surface_distance`, a realised pair of points on
+        // them) decides. Run only here: rare, and it costs milliseconds.
+        let (ia, ib) = (
+            crate::oracle::index(&a.profile),
+            crate::oracle::index(&b.profile),
+        );
+        let r =
+            crate::oracle::surface_distance(&ia, &ib, iso, &crate::oracle::OracleOptions::full());
+        // The oracle's pair is evaluated on the profiles themselves (no projection), so
+        // only rounding separates it from the surfaces: the slack, once per point.
+        if r.upper + 2.0 * slack < o.distance - OCCT_TOLERANCE - slack {
+            OCCT_MISSED
+        } else {
+            "inconclusive"
+        }
     }
 }
