@@ -86,7 +86,7 @@ fn verdict_on(sa: &Solid, sb: &Solid, d: Distance, label: &str, which: &[Check])
         eps_b: sb.tree.eps,
         // Every query here runs at the default tolerance.
         tolerance: Tolerance::Trees.width(sa.tree.target_eps, sb.tree.target_eps),
-        declared_slack: revdist::query::query_slack(&sa.tree, &sb.tree, &sa.relative_pose(&sb)),
+        declared_slack: revdist::query::query_slack(&sa.tree, &sb.tree, &sa.relative_pose(sb)),
         oracle: &o,
         a: &ia,
         b: &ib,
