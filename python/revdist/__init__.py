@@ -65,6 +65,12 @@ class DistanceResult:
         The best estimate and the certified interval ``lower <= true distance <= upper``.
     point_a, point_b : float64 (N, 3)
         Witness points on A and B in the world frame (A's frame when A is at the identity).
+    gradient_translation, gradient_rotation : float64 (N, 3)
+        The distance's derivative with respect to B's translation, and with respect to a
+        rotation vector of B about its frame origin: ``n`` and ``(point_b - origin_b) x n``
+        with ``n`` the unit vector from point_a to point_b. NaN unless the solids are
+        certified apart; the gradient where the closest pair is unique, else a
+        supergradient (the command line's ``gradient``, ``docs/cli.md``).
     overlap : bool (N,)
         The solids certainly overlap or nest (then value = lower = upper = 0).
     width_limit : str (N,)
@@ -85,6 +91,8 @@ class DistanceResult:
         "upper",
         "point_a",
         "point_b",
+        "gradient_translation",
+        "gradient_rotation",
         "overlap",
         "width_limit",
         "budget_exhausted",

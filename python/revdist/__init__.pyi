@@ -45,6 +45,8 @@ class DistanceResult:
     upper: npt.NDArray[np.float64]
     point_a: npt.NDArray[np.float64]
     point_b: npt.NDArray[np.float64]
+    gradient_translation: npt.NDArray[np.float64]
+    gradient_rotation: npt.NDArray[np.float64]
     overlap: npt.NDArray[np.bool_]
     width_limit: npt.NDArray[np.str_]
     budget_exhausted: npt.NDArray[np.bool_]

@@ -10,7 +10,7 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Point3};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
@@ -39,6 +39,10 @@ struct Row {
     upper: f64,
     point_a: [f64; 3],
     point_b: [f64; 3],
+    /// The distance's derivatives with respect to B's translation and rotation about its
+    /// origin ([`Distance::gradient`]); NaN unless the solids are certified apart.
+    gradient_translation: [f64; 3],
+    gradient_rotation: [f64; 3],
     /// node pairs, leaf bounds, leaf tests, subdivided pairs.
     counters: [u64; 4],
     overlap: bool,
@@ -49,8 +53,12 @@ struct Row {
 }
 
 impl Row {
-    fn new(d: &Distance, width_limit: u8) -> Row {
+    fn new(d: &Distance, origin_b: &Point3<f64>, width_limit: u8) -> Row {
+        let g = d.gradient(origin_b);
+        let nan = [f64::NAN; 3];
         Row {
+            gradient_translation: g.map_or(nan, |g| g.translation.into()),
+            gradient_rotation: g.map_or(nan, |g| g.rotation.into()),
             value: d.value,
             lower: d.lower,
             upper: d.upper,
@@ -136,7 +144,8 @@ fn answer(
     }
     .map_err(|e| format!("poses[{i}]: {e}"))?;
     let limit = width_limit(a, b, &call.opts, &d) as u8;
-    Ok(Row::new(&d, limit))
+    let origin_b = Point3::from(b.pose.translation.vector);
+    Ok(Row::new(&d, &origin_b, limit))
 }
 
 /// The answers as numpy arrays in a dict (the Python layer wraps them in `DistanceResult`),
@@ -152,6 +161,8 @@ fn arrays<'py>(
     let mut upper = Vec::with_capacity(n);
     let mut point_a = Vec::with_capacity(3 * n);
     let mut point_b = Vec::with_capacity(3 * n);
+    let mut grad_t = Vec::with_capacity(3 * n);
+    let mut grad_r = Vec::with_capacity(3 * n);
     let mut overlap = Vec::with_capacity(n);
     let mut limit = Vec::with_capacity(n);
     let mut node_pairs = Vec::with_capacity(n);
@@ -167,6 +178,8 @@ fn arrays<'py>(
         upper.push(r.upper);
         point_a.extend(r.point_a);
         point_b.extend(r.point_b);
+        grad_t.extend(r.gradient_translation);
+        grad_r.extend(r.gradient_rotation);
         overlap.push(r.overlap);
         limit.push(r.width_limit);
         node_pairs.push(r.counters[0]);
@@ -183,6 +196,8 @@ fn arrays<'py>(
     out.set_item("upper", upper.into_pyarray(py))?;
     out.set_item("point_a", points(point_a)?.into_pyarray(py))?;
     out.set_item("point_b", points(point_b)?.into_pyarray(py))?;
+    out.set_item("gradient_translation", points(grad_t)?.into_pyarray(py))?;
+    out.set_item("gradient_rotation", points(grad_r)?.into_pyarray(py))?;
     out.set_item("overlap", overlap.into_pyarray(py))?;
     out.set_item("width_limit_code", limit.into_pyarray(py))?;
     out.set_item("node_pairs", node_pairs.into_pyarray(py))?;

@@ -61,7 +61,7 @@ def test_bit_identical_to_the_cli_batch(cli):
         expected.append((a, b, eps, poses))
     answers = run_batch(cli, requests)
     assert all("error" not in x for x in answers), [x for x in answers if "error" in x][:3]
-    k = 0
+    k, separated = 0, 0
     for a, b, eps, poses in expected:
         sa, sb = revdist.Solid.model(a, eps=eps), revdist.Solid.model(b, eps=eps)
         r = revdist.distance(sa, sb, poses)
@@ -77,8 +77,18 @@ def test_bit_identical_to_the_cli_batch(cli):
             assert list(getattr(r, key)) == [x[key] for x in cli_part], (a, b, key)
         for key in ("node_pairs", "leaf_bounds", "leaf_tests", "subdivided_pairs"):
             assert list(getattr(r, key)) == [x[key] for x in cli_part], (a, b, key)
+        # The gradient: present exactly where the command line gives one, the same bits.
+        for key, name in [("gradient_translation", "translation"), ("gradient_rotation", "rotation")]:
+            got = getattr(r, key)
+            for i, x in enumerate(cli_part):
+                if x.get("gradient") is None:
+                    assert np.isnan(got[i]).all(), (a, b, key, i)
+                else:
+                    assert np.array_equal(bits(got[i]), bits(x["gradient"][name])), (a, b, key, i)
+        separated += sum(x.get("gradient") is not None for x in cli_part)
     # The campaign met every kind of answer it is meant to compare.
     assert k == len(PAIRS) * PER_PAIR
+    assert 0 < separated < k, separated
 
 
 def test_options_are_the_cli_options(cli):
