@@ -2,7 +2,7 @@
 # The main job: regenerates every figure and table under figures/ (issue 13), revdist and the
 # real baselines (FCL, libccd, CGAL) and peers (coal, parry3d) measured in the same run.
 #
-#   bash scripts/main.sh           # default scale: about 8 minutes of runs on 2 cores (15 at most)
+#   bash scripts/main.sh           # default scale: about 7 minutes of runs on 2 cores (15 at most)
 #   bash scripts/main.sh --paper   # paper scale (50,000 motion frames, 1,000 poses per pair, ...): hours
 #
 # Every CSV starts with '# key: value' provenance lines (machine, git commit, parameters).
