@@ -57,6 +57,24 @@ pub fn query_tree_bytes(t: &QueryTree) -> usize {
         + std::mem::size_of_val(t.upper_hulls.as_slice())
 }
 
+/// The solids of a pair at `eps` (built once when both sides name the same profile, or are
+/// the same `Arc`) and the time taken to build them, in ms (biarc trees and query trees).
+pub fn timed_pair(
+    pa: &std::sync::Arc<Profile>,
+    pb: &std::sync::Arc<Profile>,
+    eps: f64,
+) -> Result<(revdist::solid::Solid, revdist::solid::Solid, f64), revdist::biarc::TreeError> {
+    let same = std::sync::Arc::ptr_eq(pa, pb) || pa.name() == pb.name();
+    let t = std::time::Instant::now();
+    let sa = revdist::solid::Solid::from_profile(std::sync::Arc::clone(pa), eps)?;
+    let sb = if same {
+        sa.clone()
+    } else {
+        revdist::solid::Solid::from_profile(std::sync::Arc::clone(pb), eps)?
+    };
+    Ok((sa, sb, t.elapsed().as_secs_f64() * 1e3))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -149,13 +149,7 @@ fn descend(
         return;
     }
     // Nearer child first: its margin prunes more of the other.
-    let [c0, c1] = n.children;
-    let dist = |k: u32| (m - tree.nodes[k as usize].bound.center).norm();
-    let (first, second) = if dist(c0) <= dist(c1) {
-        (c0, c1)
-    } else {
-        (c1, c0)
-    };
+    let [first, second] = tree.children_nearer_first(id, m);
     descend(tree, first, w, m, total, margin);
     descend(tree, second, w, m, total, margin);
 }

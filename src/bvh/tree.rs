@@ -362,6 +362,19 @@ impl QueryTree {
         }
     }
 
+    /// The two children of inner node `n`, the one whose disk centre is nearer to the
+    /// meridian point `m` first (ties: the first child): a descent that prunes by a best
+    /// distance so far visits the likelier side first.
+    pub fn children_nearer_first(&self, n: u32, m: Point2<f64>) -> [u32; 2] {
+        let [c0, c1] = self.nodes[n as usize].children;
+        let dist = |k: u32| (m - self.nodes[k as usize].bound.center).norm();
+        if dist(c0) <= dist(c1) {
+            [c0, c1]
+        } else {
+            [c1, c0]
+        }
+    }
+
     /// Whether node `n` is in the upper level over a biarc tree's spirals: its disk is around
     /// several spirals, and it has no biarc and no hull.
     pub fn over_spirals(&self, n: u32) -> bool {

@@ -250,6 +250,17 @@ pub fn time_of_impact(
             speed_bound: speed0,
             stats: s.stats,
         };
+    // Contact certified at `t` by probe `p` (its upper bound within the contact distance).
+    let contact_at = |s: &Search, t: f64, p: Probe| {
+        answer(
+            s,
+            ToiOutcome::Contact,
+            t,
+            Some(t),
+            Some(p.distance),
+            s.queries,
+        )
+    };
     // Advancement: apart on [0, t).
     let mut t = 0.0_f64;
     loop {
@@ -258,14 +269,7 @@ pub fn time_of_impact(
         }
         let mut p = s.probe(t, false)?;
         if p.upper <= dist {
-            return Ok(answer(
-                &s,
-                ToiOutcome::Contact,
-                t,
-                Some(t),
-                Some(p.distance),
-                s.queries,
-            ));
+            return Ok(contact_at(&s, t, p));
         }
         let speed = speed_bound(ma, s.ra, mb, s.rb, t);
         let step = |p: &Probe| {
@@ -278,14 +282,7 @@ pub fn time_of_impact(
         if (p.lower <= dist || step(&p) < opts.time_tolerance) && s.budget_left() {
             p = s.probe(t, true)?;
             if p.upper <= dist {
-                return Ok(answer(
-                    &s,
-                    ToiOutcome::Contact,
-                    t,
-                    Some(t),
-                    Some(p.distance),
-                    s.queries,
-                ));
+                return Ok(contact_at(&s, t, p));
             }
         }
         if p.lower > dist {

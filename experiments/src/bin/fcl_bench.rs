@@ -48,14 +48,13 @@ use experiments::baseline_mesh::{agrees_with_fcl, Layout};
 use experiments::cli::{count_at, Common};
 use experiments::driver::{self, DriverResult};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
-use experiments::shapes::{diagonal, profile, query_tree_bytes, PAPER_EPS};
+use experiments::shapes::{diagonal, profile, query_tree_bytes, timed_pair, PAPER_EPS};
 use experiments::stats::{human_bytes, median, quantile, time_each, us};
 use experiments::table::Table;
 use nalgebra::Isometry3;
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions, Tolerance};
-use revdist::solid::Solid;
 use std::fmt::Write as _;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -301,14 +300,7 @@ fn bench_row(
     // Configuration size for the cross-check's rounding slack.
     let size = diagonal(pa) + diagonal(pb);
     // revdist: tree build (biarc tree + query tree), timed per distinct shape.
-    let t = Instant::now();
-    let sa = Solid::from_profile(Arc::clone(pa), eps)?;
-    let sb = if same {
-        sa.clone()
-    } else {
-        Solid::from_profile(Arc::clone(pb), eps)?
-    };
-    let rev_build_ms = t.elapsed().as_secs_f64() * 1e3;
+    let (sa, sb, rev_build_ms) = timed_pair(pa, pb, eps)?;
     let tree_bytes = |p: &Profile| -> Result<usize, Box<dyn std::error::Error>> {
         Ok(BiarcTree::build(p, eps)?.stats().bytes)
     };

@@ -41,7 +41,7 @@ use experiments::peers::convex::{primitive, CONVEX_MODELS};
 use experiments::peers::parry::{self, ParryShape};
 use experiments::plot::{grouped_bars, BarSeries};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
-use experiments::shapes::{diagonal, profile, query_tree_bytes};
+use experiments::shapes::{diagonal, profile, query_tree_bytes, timed_pair};
 use experiments::stats::{human_bytes, median, time_each, us};
 use experiments::table::Table;
 use nalgebra::Isometry3;
@@ -321,14 +321,7 @@ fn mesh_row(
     let same = pa.name() == pb.name();
     let size = diagonal(pa) + diagonal(pb);
     // revdist.
-    let t = Instant::now();
-    let sa = Solid::from_profile(Arc::clone(pa), eps)?;
-    let sb = if same {
-        sa.clone()
-    } else {
-        Solid::from_profile(Arc::clone(pb), eps)?
-    };
-    let rev_build_ms = t.elapsed().as_secs_f64() * 1e3;
+    let (sa, sb, rev_build_ms) = timed_pair(pa, pb, eps)?;
     let rev_bytes = query_tree_bytes(&sa.tree) + if same { 0 } else { query_tree_bytes(&sb.tree) };
     // The certified meshes every mesh peer gets (balanced layout).
     let (ma, ta) = certified_mesh(pa, eps, None)?;

@@ -71,13 +71,7 @@ fn descend(tree: &QueryTree, id: u32, m: Point2<f64>, best: &mut Option<(f64, Po
         }
         return;
     }
-    let [c0, c1] = n.children;
-    let dist = |k: u32| (m - tree.nodes[k as usize].bound.center).norm();
-    let (first, second) = if dist(c0) <= dist(c1) {
-        (c0, c1)
-    } else {
-        (c1, c0)
-    };
+    let [first, second] = tree.children_nearer_first(id, m);
     descend(tree, first, m, best);
     descend(tree, second, m, best);
 }
