@@ -12,6 +12,20 @@ use crate::profile::Profile;
 use nalgebra::{Isometry3, Point3};
 use std::sync::Arc;
 
+/// Share of the requested bound `eps` a leaf of a solid's tree may take.
+///
+/// A leaf pair's own interval is `2 (e_a + e_b)` wide (the patches' distance, minus and plus
+/// the leaves' bounds `e`), and the default query width is `eps_a + eps_b`
+/// ([`crate::query::Tolerance::Trees`]). With leaves at the full `eps` a leaf pair holding
+/// the minimum fits that width only once its patch distance is known exactly, so every
+/// such pair near the minimum went to the exact solve (degree-8 boundary solves), and so
+/// did its neighbours within `e`. B-spline profiles met this at coarse eps, where a leaf's
+/// bound is close to `eps` (`cup_ff`'s largest leaf at eps 1e-3: 0.93 eps), and a query
+/// at 1e-3 cost more than one at 1e-4. At half of `eps`, the stage-1 bounds settle the
+/// pair. Measured (`docs/performance.md`, 2026-11-27): pawn_ff-cup_ff medians at eps
+/// 1e-3 / 1e-4 64 / 42 -> 29 / 32 us; a quarter gives the same.
+pub const LEAF_EPS_SHARE: f64 = 0.5;
+
 /// A solid of revolution placed in the world.
 #[derive(Debug, Clone)]
 pub struct Solid {
@@ -33,11 +47,20 @@ impl Solid {
         }
     }
 
-    /// A solid from an exact profile: builds the biarc tree with bound `eps` (paper 4.1),
-    /// and certifies convexity for the convex fast path.
+    /// A solid from an exact profile for the requested bound `eps` (paper 4.1): its biarc
+    /// tree's leaves are built to [`LEAF_EPS_SHARE`] of `eps` (no finer than the profile
+    /// allows, [`BiarcTree::min_eps`]), its [`QueryTree::target_eps`] is `eps` (the default
+    /// query width `eps_a + eps_b`), and convexity is certified for the convex fast path.
+    ///
+    /// # Errors
+    /// [`TreeError`] naming the requested `eps` when it is out of range, or the profile's
+    /// problem when a spiral cannot be fitted.
     pub fn from_profile(profile: Arc<Profile>, eps: f64) -> Result<Solid, TreeError> {
-        let bt = BiarcTree::build(&profile, eps)?;
+        BiarcTree::check_eps(&profile, eps)?;
+        let leaf_eps = (LEAF_EPS_SHARE * eps).max(BiarcTree::min_eps(&profile));
+        let bt = BiarcTree::build(&profile, leaf_eps)?;
         let mut tree = QueryTree::from_biarc_tree(&bt, profile.kind());
+        tree.target_eps = tree.target_eps.max(eps);
         tree.convex = ConvexHullData::certify(&profile, &tree);
         Ok(Solid::new(Arc::new(tree), Some(profile)))
     }

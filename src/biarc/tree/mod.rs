@@ -310,14 +310,14 @@ impl BiarcTree {
         Ok(tree)
     }
 
-    /// Rebuilds in place for a new (e.g. deformed) profile, reusing all allocations.
-    pub fn rebuild(&mut self, profile: &Profile, eps: f64) -> Result<(), TreeError> {
+    /// Checks that `eps` is a bound a tree of `profile` can be built for: positive, finite,
+    /// and between [`MIN_EPS_REL`] and [`MAX_EPS_REL`] of the profile size.
+    pub fn check_eps(profile: &Profile, eps: f64) -> Result<(), TreeError> {
         if !(eps > 0.0 && eps.is_finite()) {
             return Err(TreeError::InvalidEps(eps));
         }
-        let bbox = profile.bounding_box();
-        let size = bbox.diagonal();
-        if eps < MIN_EPS_REL * size {
+        let size = profile.bounding_box().diagonal();
+        if eps < BiarcTree::min_eps(profile) {
             return Err(TreeError::EpsTooSmall {
                 eps,
                 min: MIN_EPS_REL * size,
@@ -329,6 +329,19 @@ impl BiarcTree {
                 max: MAX_EPS_REL * size,
             });
         }
+        Ok(())
+    }
+
+    /// The smallest bound a tree of `profile` accepts ([`MIN_EPS_REL`] of its size).
+    pub fn min_eps(profile: &Profile) -> f64 {
+        MIN_EPS_REL * profile.bounding_box().diagonal()
+    }
+
+    /// Rebuilds in place for a new (e.g. deformed) profile, reusing all allocations.
+    pub fn rebuild(&mut self, profile: &Profile, eps: f64) -> Result<(), TreeError> {
+        BiarcTree::check_eps(profile, eps)?;
+        let bbox = profile.bounding_box();
+        let size = bbox.diagonal();
         self.eps = eps;
         self.coordinate_scale = size.max(bbox.min.coords.amax()).max(bbox.max.coords.amax());
         self.flat_radius = crate::biarc::arc::FLAT_RADIUS_REL * size;
