@@ -58,7 +58,7 @@ impl Solid {
     pub fn from_profile(profile: Arc<Profile>, eps: f64) -> Result<Solid, TreeError> {
         BiarcTree::check_eps(&profile, eps)?;
         let leaf_eps = (LEAF_EPS_SHARE * eps).max(BiarcTree::min_eps(&profile));
-        let bt = BiarcTree::build(&profile, leaf_eps)?;
+        let bt = BiarcTree::build_merged(&profile, leaf_eps)?;
         let mut tree = QueryTree::from_biarc_tree(&bt, profile.kind());
         tree.target_eps = tree.target_eps.max(eps);
         tree.convex = ConvexHullData::certify(&profile, &tree);

@@ -300,12 +300,28 @@ pub struct BiarcTree {
     coeffs: Vec<[f64; 3]>,
     stack: Vec<Job>,
     max_depth: u32,
+    /// Join consecutive spirals that one biarc fits within `eps` ([`BiarcTree::build_merged`]).
+    merge_spirals: bool,
 }
 
 impl BiarcTree {
     /// Builds the tree of `profile` with leaf bound `eps`.
     pub fn build(profile: &Profile, eps: f64) -> Result<BiarcTree, TreeError> {
         let mut tree = BiarcTree::default();
+        tree.rebuild(profile, eps)?;
+        Ok(tree)
+    }
+
+    /// [`BiarcTree::build`], then consecutive spirals of a piece that one biarc fits within
+    /// `eps` under the arc deviation bound (no spiral property needed) become one spiral
+    /// whose tree is a single leaf. The query's trees are built this way
+    /// ([`crate::solid::Solid::from_profile`]); the paper's tables and the certified meshes
+    /// keep one tree per spiral.
+    pub fn build_merged(profile: &Profile, eps: f64) -> Result<BiarcTree, TreeError> {
+        let mut tree = BiarcTree {
+            merge_spirals: true,
+            ..BiarcTree::default()
+        };
         tree.rebuild(profile, eps)?;
         Ok(tree)
     }
@@ -353,6 +369,9 @@ impl BiarcTree {
         self.max_depth = 0;
         self.load_spans(profile)?;
         self.segment();
+        if self.merge_spirals {
+            self.merge_spirals();
+        }
         for s in 0..self.spirals.len() {
             self.build_spiral(s)?;
         }

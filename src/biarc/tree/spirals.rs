@@ -5,7 +5,7 @@
 use super::piece_curve::PieceCurve;
 use super::*;
 use crate::biarc::arc::cross;
-use crate::biarc::fit::{fit_biarc, g1_tolerance, CurveSample, PlanarCurve};
+use crate::biarc::fit::{fit_biarc, g1_tolerance, CurveSample, FittedBiarc, PlanarCurve};
 use crate::biarc::spiral::split_span;
 use crate::biarc::BiarcError;
 use crate::nurbs::Aabb2;
@@ -124,6 +124,90 @@ impl BiarcTree {
         !(dirs.contains(&1) && dirs.contains(&-1))
     }
 
+    /// The certified distance between a fitted biarc and its curve piece by the arc
+    /// deviation bound ([`crate::biarc::arc_deviation`], no spiral property): the larger of
+    /// the two arcs' bounds on their parts of the piece.
+    fn arc_deviation_bound(
+        &self,
+        curve: &PieceCurve<'_>,
+        fit: &FittedBiarc,
+        (t0, t1): (f64, f64),
+        piece: usize,
+    ) -> Result<f64, TreeError> {
+        let ranges = [(t0, fit.t_joint), (fit.t_joint, t1)];
+        let mut bound = 0.0f64;
+        for (arc, (t0, t1)) in fit.arcs.iter().zip(ranges) {
+            let d = curve
+                .arc_deviation(t0, t1, arc, self.flat_radius)
+                .ok_or(TreeError::Fit {
+                    piece,
+                    source: BiarcError::NotASpiral { t0, t1 },
+                })?;
+            bound = bound.max(d);
+        }
+        Ok(bound)
+    }
+
+    /// Joins consecutive spirals of a piece where one biarc fits their union within the
+    /// tree's `eps` under the arc deviation bound, which needs no spiral property: a single
+    /// leaf then covers what was one leaf per spiral.
+    ///
+    /// Why: a B-spline's curvature has an extremum in most knot spans, and each extremum
+    /// starts a spiral, so a freeform profile's tree had at least one leaf per spiral however
+    /// coarse `eps` was (`pawn_ff`: 69 spirals, 71 leaves at eps 1e-3 against `pawn`'s 17),
+    /// and its queries popped four times the node pairs. Spirals whose ends meet at the same
+    /// parameter of one piece are candidates (a crease or a skipped point span ends a run);
+    /// the joined spiral's tree is then grown with [`SpiralBound::ArcDeviation`], which
+    /// refits the same biarc as a leaf. Chord spirals ([`SpiralBound::ControlPolygon`]) and
+    /// ends at stationary points (where the end sample drops a first-order term) stay apart.
+    pub(super) fn merge_spirals(&mut self) {
+        let spirals = std::mem::take(&mut self.spirals);
+        let mut merged: Vec<SpiralInfo> = Vec::with_capacity(spirals.len());
+        for s in spirals {
+            if let Some(joined) = merged.last().and_then(|prev| self.joined(prev, &s)) {
+                *merged.last_mut().expect("checked above") = joined;
+            } else {
+                merged.push(s);
+            }
+        }
+        self.spirals = merged;
+    }
+
+    /// `a` and `b` as one spiral bounded by the arc deviation, when its one biarc is within
+    /// `eps` of it ([`Self::merge_spirals`]).
+    fn joined(&self, a: &SpiralInfo, b: &SpiralInfo) -> Option<SpiralInfo> {
+        let chords = SpiralBound::ControlPolygon;
+        if a.piece != b.piece
+            || a.param_range.1 != b.param_range.0
+            || a.bound == chords
+            || b.bound == chords
+        {
+            return None;
+        }
+        let union = SpiralInfo {
+            param_range: (a.param_range.0, b.param_range.1),
+            spans: (a.spans.0, b.spans.1),
+            bound: SpiralBound::ArcDeviation,
+            ..*a
+        };
+        let curve = self.piece_curve(&union);
+        let (t0, t1) = union.param_range;
+        let (start, slack_start) = curve.end_sample(t0, true, t1 - t0);
+        let (end, slack_end) = curve.end_sample(t1, false, t1 - t0);
+        if slack_start != 0.0 || slack_end != 0.0 {
+            return None;
+        }
+        let fit = fit_biarc(&curve, &start, &end).ok()?;
+        if fit.joint_defect() > g1_tolerance(&fit, self.coordinate_scale).max(ARC_DEVIATION_G1_TOL)
+        {
+            return None;
+        }
+        let bound = self
+            .arc_deviation_bound(&curve, &fit, (t0, t1), a.piece)
+            .ok()?;
+        (bound <= self.eps).then_some(union)
+    }
+
     pub(super) fn piece_curve(&self, s: &SpiralInfo) -> PieceCurve<'_> {
         PieceCurve {
             spans: &self.spans[s.spans.0 as usize..=s.spans.1 as usize],
@@ -200,17 +284,8 @@ impl BiarcTree {
                         });
                     }
                     if kind == SpiralBound::ArcDeviation {
-                        let parts = [(job.a.t, fit.t_joint), (fit.t_joint, job.b.t)];
-                        let mut bound = 0.0f64;
-                        for (arc, (t0, t1)) in fit.arcs.iter().zip(parts) {
-                            let d = curve.arc_deviation(t0, t1, arc, self.flat_radius).ok_or(
-                                TreeError::Fit {
-                                    piece,
-                                    source: BiarcError::NotASpiral { t0, t1 },
-                                },
-                            )?;
-                            bound = bound.max(d);
-                        }
+                        let bound =
+                            self.arc_deviation_bound(&curve, &fit, (job.a.t, job.b.t), piece)?;
                         (fit.arcs, bound)
                     } else {
                         // Bound of the curve piece against the biarc as the query revolves it
