@@ -593,3 +593,29 @@ fn spirals_merged_across_knots_use_arc_deviation() {
 fn degenerate_chain(text: &str) -> Profile {
     crate::profile_file::from_toml_str_allowing_self_contact(text).unwrap()
 }
+
+/// Spirals joined by [`BiarcTree::build_merged`] hold every node bound against dense sampling
+/// of the true curve (the merged leaves' arc deviation bounds need no spiral property), the
+/// leaves still chain up, and the freeform profiles, whose B-spline curvature starts a spiral
+/// in most knot spans, get far fewer leaves than one per spiral.
+#[test]
+fn merged_spirals_hold_their_bounds() {
+    let mut names: Vec<String> = crate::models::model_names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    names.extend(["morph@0", "morph@0.3", "morph@0.8"].map(String::from));
+    for name in &names {
+        let prof = crate::models::model(name).unwrap();
+        for eps in [1e-2, 1e-3, 1e-4] {
+            let merged = BiarcTree::build_merged(&prof, eps).unwrap();
+            check_tree_with(&prof, &merged, MODEL_SAMPLES);
+            let plain = BiarcTree::build(&prof, eps).unwrap();
+            let (m, p) = (merged.leaves().count(), plain.leaves().count());
+            assert!(m <= p, "{name} at {eps}: {m} merged leaves > {p}");
+            if name == "pawn_ff" && eps == 1e-3 {
+                assert!(3 * m < p, "pawn_ff at 1e-3: {m} merged leaves, {p} plain");
+            }
+        }
+    }
+}
