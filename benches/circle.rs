@@ -5,30 +5,24 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use revdist::circle::{binormals, min_distance, Circle3};
+use revdist::rng::SplitMix64;
 
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn v(&mut self) -> Vector3<f64> {
-        Vector3::new(
-            self.f() * 2.0 - 1.0,
-            self.f() * 2.0 - 1.0,
-            self.f() * 2.0 - 1.0,
-        )
-    }
-    fn motion(&mut self) -> Isometry3<f64> {
-        let axis = nalgebra::Unit::new_normalize(self.v() + Vector3::new(0.0, 0.0, 1e-3));
-        Isometry3::from_parts(
-            Translation3::from(self.v() * 5.0),
-            UnitQuaternion::from_axis_angle(&axis, self.f() * std::f64::consts::TAU),
-        )
-    }
+/// A vector with coordinates uniform in [-1, 1).
+fn vector(rng: &mut SplitMix64) -> Vector3<f64> {
+    Vector3::new(
+        rng.next_f64() * 2.0 - 1.0,
+        rng.next_f64() * 2.0 - 1.0,
+        rng.next_f64() * 2.0 - 1.0,
+    )
+}
+
+/// A rigid motion: a rotation about a random axis, a shift of up to 5 per coordinate.
+fn motion(rng: &mut SplitMix64) -> Isometry3<f64> {
+    let axis = nalgebra::Unit::new_normalize(vector(rng) + Vector3::new(0.0, 0.0, 1e-3));
+    Isometry3::from_parts(
+        Translation3::from(vector(rng) * 5.0),
+        UnitQuaternion::from_axis_angle(&axis, rng.next_f64() * std::f64::consts::TAU),
+    )
 }
 
 fn c(center: [f64; 3], n: [f64; 3], r: f64) -> Circle3 {
@@ -36,22 +30,32 @@ fn c(center: [f64; 3], n: [f64; 3], r: f64) -> Circle3 {
 }
 
 /// 64 instances of a family: a canonical pair under random rigid motions.
-fn family(a: Circle3, b: Circle3, rng: &mut Rng) -> Vec<(Circle3, Circle3)> {
+fn family(a: Circle3, b: Circle3, rng: &mut SplitMix64) -> Vec<(Circle3, Circle3)> {
     (0..64)
         .map(|_| {
-            let m = rng.motion();
+            let m = motion(rng);
             (a.transformed(&m), b.transformed(&m))
         })
         .collect()
 }
 
 fn families() -> Vec<(&'static str, Vec<(Circle3, Circle3)>)> {
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64(5);
     let a = c([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 1.0);
     let general: Vec<_> = (0..256)
         .map(|_| {
-            let x = Circle3::new(Point3::from(rng.v()), rng.v(), 0.2 + rng.f()).unwrap();
-            let y = Circle3::new(Point3::from(rng.v() * 1.5), rng.v(), 0.2 + rng.f()).unwrap();
+            let x = Circle3::new(
+                Point3::from(vector(&mut rng)),
+                vector(&mut rng),
+                0.2 + rng.next_f64(),
+            )
+            .unwrap();
+            let y = Circle3::new(
+                Point3::from(vector(&mut rng) * 1.5),
+                vector(&mut rng),
+                0.2 + rng.next_f64(),
+            )
+            .unwrap();
             (x, y)
         })
         .collect();

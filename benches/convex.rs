@@ -11,6 +11,7 @@ use revdist::models::model;
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions, Tolerance};
+use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 use std::hint::black_box;
 use std::sync::Arc;
@@ -20,29 +21,23 @@ const MODELS: [&str; 4] = ["sphere", "capsule", "cylinder", "cone"];
 const EPS: f64 = 1e-4;
 const POSES: usize = 100;
 
-/// SplitMix64, uniform in [0, 1).
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn unit(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5);
-            if v.norm() > 0.05 && v.norm() < 0.5 {
-                return v.normalize();
-            }
+/// A unit vector: rejection sampling in the shell 0.05..0.5 of the cube [-0.5, 0.5)^3.
+fn unit(rng: &mut SplitMix64) -> Vector3<f64> {
+    loop {
+        let v = Vector3::new(
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+            rng.next_f64() - 0.5,
+        );
+        if v.norm() > 0.05 && v.norm() < 0.5 {
+            return v.normalize();
         }
     }
 }
 
 /// Close poses: B far along a random direction, then moved back along the normal of the
 /// closest points to a gap in 1e-4..1e-1 (exact for convex solids).
-fn close_poses(a: &Solid, b: &Solid, rng: &mut Rng) -> Vec<Isometry3<f64>> {
+fn close_poses(a: &Solid, b: &Solid, rng: &mut SplitMix64) -> Vec<Isometry3<f64>> {
     let exact = QueryOptions {
         tolerance: Tolerance::Absolute(0.0),
         convex_path: false,
@@ -51,13 +46,13 @@ fn close_poses(a: &Solid, b: &Solid, rng: &mut Rng) -> Vec<Isometry3<f64>> {
     };
     let mut out = Vec::new();
     while out.len() < POSES {
-        let rot = UnitQuaternion::from_scaled_axis(rng.unit() * (rng.f() * 3.0));
-        let far = Isometry3::from_parts(Translation3::from(rng.unit() * 3.0), rot);
+        let rot = UnitQuaternion::from_scaled_axis(unit(rng) * (rng.next_f64() * 3.0));
+        let far = Isometry3::from_parts(Translation3::from(unit(rng) * 3.0), rot);
         let d = distance(a, &b.with_pose(far), &exact);
         let Some(n) = (d.point_b - d.point_a).try_normalize(0.0) else {
             continue;
         };
-        let gap = 10f64.powf(-4.0 + 3.0 * rng.f());
+        let gap = 10f64.powf(-4.0 + 3.0 * rng.next_f64());
         out.push(Translation3::from(-n * (d.value - gap)) * far);
     }
     out
@@ -104,7 +99,7 @@ fn freeform(a: f64, h: f64, k: [f64; 4]) -> Profile {
 }
 
 fn main() {
-    let mut rng = Rng(0xC0FFEE);
+    let mut rng = SplitMix64(0xC0FFEE);
     let on = QueryOptions {
         convex_path: true,
         ..QueryOptions::default()

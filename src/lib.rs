@@ -24,6 +24,7 @@ pub mod profile;
 pub mod profile_file;
 pub mod query;
 pub mod request;
+pub mod rng;
 pub mod solid;
 pub mod svg;
 pub mod tessellate;

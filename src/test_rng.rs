@@ -5,8 +5,9 @@
 //! were written with, under one name per algorithm:
 //! * [`Lcg`], Knuth's MMIX linear congruential generator (the top 53 bits of the state),
 //!   used by the query's tests;
-//! * [`SplitMix64`] (Steele, Lea and Flood 2014), used by the circle tests and the one to
-//!   use for new tests;
+//! * [`SplitMix64`], the crate's shared generator ([`crate::rng`]), used by the circle tests
+//!   and the one to use for new tests; the rejection-sampled unit vector and rigid motion
+//!   the tests draw with it are defined here;
 //! * [`XorShift64`] (Marsaglia 2003, shifts 13/7/17), used by the radial-field test.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -26,26 +27,13 @@ impl Lcg {
     }
 }
 
-/// SplitMix64; `next_f64` is uniform in [0, 1).
-pub(crate) struct SplitMix64(pub(crate) u64);
+/// The shared generator ([`crate::rng`]), under the name the tests import it by.
+pub(crate) use crate::rng::SplitMix64;
 
+/// The tests' own geometric draws, in the way their seeds were written with.
 impl SplitMix64 {
-    /// The next number, uniform in [0, 1).
-    pub fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-
     /// A random unit vector (rejection sampling in the unit ball's shell above 0.1).
-    pub fn unit(&mut self) -> Vector3<f64> {
+    pub(crate) fn unit(&mut self) -> Vector3<f64> {
         loop {
             let v = Vector3::new(
                 self.range(-1.0, 1.0),
@@ -61,7 +49,7 @@ impl SplitMix64 {
 
     /// A random rigid motion: a rotation about a random axis and a shift of length below
     /// `shift`.
-    pub fn motion(&mut self, shift: f64) -> Isometry3<f64> {
+    pub(crate) fn motion(&mut self, shift: f64) -> Isometry3<f64> {
         let axis = nalgebra::Unit::new_normalize(self.unit());
         let rot = UnitQuaternion::from_axis_angle(&axis, self.range(0.0, TAU));
         let t = self.unit() * self.range(0.0, shift);

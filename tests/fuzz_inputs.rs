@@ -16,11 +16,12 @@ use std::sync::mpsc;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use mutate::{mutate_bytes, mutate_json, mutate_toml, Rng};
+use mutate::{mutate_bytes, mutate_json, mutate_toml};
 use nalgebra::Isometry3;
 use revdist::models::model;
 use revdist::profile_file::{from_toml_str, to_toml_string};
 use revdist::query::{try_distance, Budget, QueryOptions};
+use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 
 /// Mutated profile files checked in-process.
@@ -149,7 +150,7 @@ fn profile_seeds() -> Vec<String> {
 #[test]
 fn mutated_profile_files_are_refused_clearly_or_answered() {
     let seeds = profile_seeds();
-    let mut rng = Rng(seed());
+    let mut rng = SplitMix64(seed());
     let inputs: Vec<Vec<u8>> = (0..PROFILE_INPUTS)
         .map(|i| {
             let base = rng.pick(&seeds).clone();
@@ -225,7 +226,7 @@ const BATCH_SEEDS: [&str; 4] = [
 
 #[test]
 fn mutated_batch_lines_each_get_one_clear_answer() {
-    let mut rng = Rng(seed() ^ 0xB47C);
+    let mut rng = SplitMix64(seed() ^ 0xB47C);
     let mut input = Vec::new();
     for i in 0..BATCH_LINES {
         let base = *rng.pick(&BATCH_SEEDS);
@@ -309,7 +310,7 @@ fn mutated_batch_lines_each_get_one_clear_answer() {
 fn mutations_are_reproducible() {
     let base = BATCH_SEEDS[0];
     let run = |s| {
-        let mut rng = Rng(s);
+        let mut rng = SplitMix64(s);
         (0..50)
             .map(|_| mutate_json(&mut rng, base))
             .collect::<Vec<_>>()

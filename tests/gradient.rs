@@ -14,6 +14,7 @@
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use revdist::models::model;
 use revdist::query::{try_distance, QueryOptions, Tolerance};
+use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 use std::sync::Arc;
 
@@ -24,24 +25,14 @@ const STEP: f64 = 1e-3;
 /// Trees' eps.
 const EPS: f64 = 1e-6;
 
-/// SplitMix64 (the generator the crate's own tests use for new tests).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn unit(&mut self) -> Vector3<f64> {
-        loop {
-            let v =
-                Vector3::new(self.next(), self.next(), self.next()) * 2.0 - Vector3::repeat(1.0);
-            let n = v.norm();
-            if n > 0.1 && n <= 1.0 {
-                return v / n;
-            }
+/// A random unit vector (rejection sampling in the unit ball's shell above 0.1).
+fn unit(rng: &mut SplitMix64) -> Vector3<f64> {
+    loop {
+        let v = Vector3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * 2.0
+            - Vector3::repeat(1.0);
+        let n = v.norm();
+        if n > 0.1 && n <= 1.0 {
+            return v / n;
         }
     }
 }
@@ -59,14 +50,14 @@ fn gradient_matches_central_differences() {
     };
     let names = ["pawn", "cup", "capsule", "cone", "ring"];
     let solids: Vec<Solid> = names.iter().map(|n| solid(n)).collect();
-    let mut rng = Rng(0x32_6ad1);
+    let mut rng = SplitMix64(0x32_6ad1);
     let mut checked = 0;
     for k in 0..12 {
         let a = &solids[k % names.len()];
         let b0 = &solids[(k * 3 + 1) % names.len()];
-        let rot = UnitQuaternion::from_scaled_axis(rng.unit() * (3.0 * rng.next()));
+        let rot = UnitQuaternion::from_scaled_axis(unit(&mut rng) * (3.0 * rng.next_f64()));
         // Push B out along a random direction until the certified gap is in [0.2, 1].
-        let dir = rng.unit();
+        let dir = unit(&mut rng);
         let mut s = 0.0;
         let mut found = None;
         while s < 6.0 {
@@ -83,7 +74,7 @@ fn gradient_matches_central_differences() {
         let origin = Point3::from(pose.translation.vector);
         let g = d.gradient(&origin).expect("separated: a gradient");
         assert!((g.normal.norm() - 1.0).abs() < 1e-12);
-        for axis in [Vector3::x(), Vector3::y(), Vector3::z(), rng.unit()] {
+        for axis in [Vector3::x(), Vector3::y(), Vector3::z(), unit(&mut rng)] {
             for rotation in [false, true] {
                 let moved = |h: f64| {
                     let p = if rotation {

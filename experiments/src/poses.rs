@@ -2,10 +2,11 @@
 //! (the regime where a distance query does real work).
 
 use crate::shapes::centre;
-use crate::SplitMix;
+use crate::Draw;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions};
+use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 use std::sync::Arc;
 
@@ -27,7 +28,7 @@ pub fn pose_at_gap(
     centres: (f64, f64),
     reach: f64,
     gap: f64,
-    rng: &mut SplitMix,
+    rng: &mut SplitMix64,
 ) -> Option<Isometry3<f64>> {
     let rot = rng.rotation();
     let dir = rng.unit_vector();
@@ -97,7 +98,7 @@ pub struct SmoothMotion {
 impl SmoothMotion {
     /// A motion through `keys` (>= 2) keyframes with `periods` gap oscillations.
     pub fn new(seed: u64, keys: usize, gaps: (f64, f64), periods: f64) -> Self {
-        let mut rng = SplitMix(seed);
+        let mut rng = SplitMix64(seed);
         let keys = keys.max(2);
         let rotations = (0..keys).map(|_| rng.rotation()).collect();
         let directions = (0..keys).map(|_| rng.unit_vector()).collect();
@@ -181,8 +182,8 @@ impl SmoothMotion {
 }
 
 /// Log-uniform gap in `[lo, hi]`.
-pub fn log_uniform(rng: &mut SplitMix, lo: f64, hi: f64) -> f64 {
-    (lo.ln() + (hi.ln() - lo.ln()) * rng.next_f64()).exp()
+pub fn log_uniform(rng: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+    rng.log_range(lo, hi)
 }
 
 /// Gap range of the close poses (log-uniform; `docs/protocols.md`).
@@ -223,7 +224,7 @@ pub fn close_poses(
     let ((za, ra), (zb, rb)) = (centre(pa), centre(pb));
     let place_a = Solid::from_profile(Arc::clone(pa), PLACEMENT_EPS)?;
     let place_b = Solid::from_profile(Arc::clone(pb), PLACEMENT_EPS)?;
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix64(seed);
     let mut poses = Vec::with_capacity(n);
     let mut draws = 0;
     while poses.len() < n {

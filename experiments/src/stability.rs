@@ -49,15 +49,15 @@ use rayon::prelude::*;
 use revdist::models::primitives::{arc, deg, line, pt};
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions};
+use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 use rug::{Float, Rational};
 use verify::circles::{catalogue, random_motion, run_case, Case, CatalogueEntry, RCircle};
 use verify::exact_circle::{
     rotation_from_quaternion, rotation_from_rational_quaternion, RVec, PREC,
 };
-use verify::random_profiles::SplitMix64;
 
-use crate::SplitMix;
+use crate::Draw;
 
 /// Error type of this module.
 pub type Error = Box<dyn std::error::Error + Send + Sync>;
@@ -253,7 +253,7 @@ impl Sample {
 
 /// A seed for case (family, variant, delta, seed), independent of the run's order.
 fn case_seed(level: Level, family: usize, delta: Option<i32>, seed: usize) -> u64 {
-    let mut g = SplitMix(
+    let mut g = SplitMix64(
         0x0057_ab1e
             ^ ((level as u64) << 56)
             ^ ((family as u64) << 48)
@@ -502,18 +502,18 @@ struct SolidCase {
     exact: Float,
 }
 
-fn spin(rng: &mut SplitMix) -> UnitQuaternion<f64> {
+fn spin(rng: &mut SplitMix64) -> UnitQuaternion<f64> {
     UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::TAU * rng.next_f64())
 }
 
 /// A random horizontal unit vector.
-fn horizontal(rng: &mut SplitMix) -> Vector3<f64> {
+fn horizontal(rng: &mut SplitMix64) -> Vector3<f64> {
     let phi = std::f64::consts::TAU * rng.next_f64();
     Vector3::new(phi.cos(), phi.sin(), 0.0)
 }
 
 /// A random spin about z followed by a tilt of `angle` about a random horizontal axis.
-fn tilted(rng: &mut SplitMix, angle: f64) -> UnitQuaternion<f64> {
+fn tilted(rng: &mut SplitMix64, angle: f64) -> UnitQuaternion<f64> {
     let axis = nalgebra::Unit::new_normalize(horizontal(rng));
     UnitQuaternion::from_axis_angle(&axis, angle) * spin(rng)
 }
@@ -536,7 +536,7 @@ fn solid_case(
     fi: usize,
     vi: usize,
     d: f64,
-    rng: &mut SplitMix,
+    rng: &mut SplitMix64,
 ) -> Result<SolidCase, Error> {
     let (family, variants) = SOLID_FAMILIES[fi];
     let variant = variants[vi];
@@ -756,7 +756,7 @@ pub fn solid_sample(
 ) -> Result<Sample, Error> {
     let (family, variants) = SOLID_FAMILIES[fi];
     let vi = seed % variants.len();
-    let mut rng = SplitMix(case_seed(Level::Solid, fi, delta, seed));
+    let mut rng = SplitMix64(case_seed(Level::Solid, fi, delta, seed));
     let c = solid_case(shapes, fi, vi, delta_value(delta), &mut rng)?;
     let exact = c.exact.max(&Float::with_val(PREC, 0));
     let m = pose(

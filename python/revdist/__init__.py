@@ -178,16 +178,18 @@ def distance(
         outside the representable range, bad options; the message is the command line's,
         prefixed with where (``poses[3]: rotation [...] is not a unit quaternion ...``).
     """
-    arrays = _revdist.distance(
-        a,
-        b,
-        _as_float64("poses", poses),
-        pose_a=_pose_arg("pose_a", pose_a),
+    poses = _as_float64("poses", poses)
+    pose_a = _pose_arg("pose_a", pose_a)
+    # A fresh pair, cold queries: the extension's one entry point, which Pair uses warm.
+    arrays = _revdist.Pair(a, b).distance(
+        poses,
+        pose_a=pose_a,
         tolerance=tolerance,
         max_time_ms=max_time_ms,
         max_node_pairs=max_node_pairs,
         refine=refine,
         threads=threads,
+        warm=False,
     )
     return DistanceResult(arrays)
 

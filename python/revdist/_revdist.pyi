@@ -37,19 +37,9 @@ class Pair:
         max_time_ms: Optional[float] = None,
         max_node_pairs: Optional[int] = None,
         refine: bool = False,
+        threads: Optional[int] = None,
+        warm: bool = True,
     ) -> dict[str, Any]: ...
     def reset(self) -> None: ...
 
-def distance(
-    a: Solid,
-    b: Solid,
-    poses: npt.NDArray[np.float64],
-    *,
-    pose_a: Optional[npt.NDArray[np.float64]] = None,
-    tolerance: Optional[float] = None,
-    max_time_ms: Optional[float] = None,
-    max_node_pairs: Optional[int] = None,
-    refine: bool = False,
-    threads: Optional[int] = None,
-) -> dict[str, Any]: ...
 def models() -> list[str]: ...

@@ -17,7 +17,6 @@ use pyo3::prelude::*;
 fn _revdist(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<solid::PySolid>()?;
     m.add_class::<query::PyPair>()?;
-    m.add_function(wrap_pyfunction!(query::distance, m)?)?;
     m.add_function(wrap_pyfunction!(solid::models, m)?)?;
     m.add("WIDTH_LIMITS", query::WIDTH_LIMIT_NAMES.to_vec())?;
     m.add("DEFAULT_EPS", solid::DEFAULT_EPS)?;

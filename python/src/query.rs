@@ -1,6 +1,7 @@
-//! `revdist.distance` (independent poses, spread over the cores with rayon) and
-//! `revdist.Pair` (a motion: consecutive poses warm-start each other through a
-//! `QueryCache`). Both release the GIL for the whole batch.
+//! The one query entry point, `Pair.distance`, behind both of the package's: `revdist.distance`
+//! (independent poses, spread over the cores with rayon) and `revdist.Pair` (a motion:
+//! consecutive poses warm-start each other through a `QueryCache`). Both release the GIL for
+//! the whole batch.
 //!
 //! Each pose is measured by `revdist::query::try_distance` (`try_distance_cached` for a
 //! `Pair`) with A at `pose_a` and B at the pose, exactly the command line's batch query
@@ -229,57 +230,10 @@ fn pool(threads: usize) -> PyResult<Arc<rayon::ThreadPool>> {
     Ok(p)
 }
 
-/// Certified distances between solid `a` (at `pose_a`, default the identity) and solid `b`
-/// at each of `poses`; see the Python docstring of `revdist.distance`.
-#[pyfunction]
-#[pyo3(signature = (a, b, poses, *, pose_a = None, tolerance = None, max_time_ms = None,
-    max_node_pairs = None, refine = false, threads = None))]
-#[allow(clippy::too_many_arguments)]
-pub fn distance<'py>(
-    py: Python<'py>,
-    a: &PySolid,
-    b: &PySolid,
-    poses: PyReadonlyArrayDyn<'py, f64>,
-    pose_a: Option<PyReadonlyArrayDyn<'py, f64>>,
-    tolerance: Option<f64>,
-    max_time_ms: Option<f64>,
-    max_node_pairs: Option<usize>,
-    refine: bool,
-    threads: Option<usize>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let call = Call::new(
-        &poses,
-        pose_a.as_ref(),
-        tolerance,
-        max_time_ms,
-        max_node_pairs,
-        refine,
-    )?;
-    // One thread runs on the caller's (so that concurrent single-threaded calls from several
-    // Python threads run side by side); more share a pool of that size.
-    let pool = match threads {
-        Some(0) => return Err(value_error("threads must be at least 1")),
-        Some(1) => None,
-        Some(t) => Some(pool(t)?),
-        None => None,
-    };
-    let n = call.poses_b.poses.len();
-    let fresh = || (a.solid.clone(), b.solid.clone());
-    let one = |pair: &mut (Solid, Solid), i| answer(pair, &call, i, None);
-    let all = || -> Vec<Answer> { (0..n).into_par_iter().map_init(fresh, one).collect() };
-    let answers = py.detach(|| match (&pool, threads) {
-        (_, Some(1)) => {
-            let mut pair = fresh();
-            (0..n).map(|i| one(&mut pair, i)).collect()
-        }
-        (Some(p), _) => p.install(all),
-        (None, _) => all(),
-    });
-    arrays(py, answers, call.poses_b.single)
-}
-
-/// A prepared pair for a motion: each query warm-starts from the last one's closest leaf
-/// pair (`revdist::query::QueryCache`); see the Python docstring of `revdist.Pair`.
+/// A pair of solids, and the warm start of a motion through their poses
+/// (`revdist::query::QueryCache`): the one query entry point of the extension. The Python
+/// layer's `revdist.distance` asks a fresh pair for independent poses, `revdist.Pair` keeps
+/// one for a motion; see their docstrings.
 #[pyclass(name = "Pair", module = "revdist", frozen)]
 pub struct PyPair {
     a: Solid,
@@ -298,10 +252,12 @@ impl PyPair {
         }
     }
 
-    /// Distances at `poses`, in order, each warm-started by the previous one (and the first
-    /// by the last pose of the previous call); the GIL is released for the whole sequence.
+    /// Distances at `poses`. With `warm`, in order, each warm-started by the previous one
+    /// (and the first by the last pose of the previous warm call), on the calling thread;
+    /// without, independent cold queries spread over `threads` (default every core). The
+    /// GIL is released while the queries run.
     #[pyo3(signature = (poses, *, pose_a = None, tolerance = None, max_time_ms = None,
-        max_node_pairs = None, refine = false))]
+        max_node_pairs = None, refine = false, threads = None, warm = true))]
     #[allow(clippy::too_many_arguments)]
     fn distance<'py>(
         &self,
@@ -312,6 +268,8 @@ impl PyPair {
         max_time_ms: Option<f64>,
         max_node_pairs: Option<usize>,
         refine: bool,
+        threads: Option<usize>,
+        warm: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let call = Call::new(
             &poses,
@@ -321,25 +279,63 @@ impl PyPair {
             max_node_pairs,
             refine,
         )?;
-        let answers = py.detach(|| {
-            let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
-            let mut pair = (self.a.clone(), self.b.clone());
-            let mut out = Vec::with_capacity(call.poses_b.poses.len());
-            for i in 0..call.poses_b.poses.len() {
-                let r = answer(&mut pair, &call, i, Some(&mut cache));
-                let failed = r.is_err();
-                out.push(r);
-                if failed {
-                    break;
-                }
+        let answers = if warm {
+            if threads.is_some() {
+                return Err(value_error(
+                    "threads: a warm-started motion runs in order on the calling thread",
+                ));
             }
-            out
-        });
+            py.detach(|| self.in_order(&call))
+        } else {
+            self.spread(py, &call, threads)?
+        };
         arrays(py, answers, call.poses_b.single)
     }
 
     /// Forgets the warm start (the next query is cold).
     fn reset(&self) {
         *self.cache.lock().unwrap_or_else(|e| e.into_inner()) = QueryCache::default();
+    }
+}
+
+impl PyPair {
+    /// The poses in order, each warm-started by the previous one; stops at the first error.
+    fn in_order(&self, call: &Call) -> Vec<Answer> {
+        let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
+        let mut pair = (self.a.clone(), self.b.clone());
+        let mut out = Vec::with_capacity(call.poses_b.poses.len());
+        for i in 0..call.poses_b.poses.len() {
+            let r = answer(&mut pair, call, i, Some(&mut cache));
+            let failed = r.is_err();
+            out.push(r);
+            if failed {
+                break;
+            }
+        }
+        out
+    }
+
+    /// Independent cold queries, over the cores (one thread: on the caller's, so that
+    /// concurrent single-threaded calls from several Python threads run side by side; more
+    /// share a pool of that size).
+    fn spread(&self, py: Python<'_>, call: &Call, threads: Option<usize>) -> PyResult<Vec<Answer>> {
+        let pool = match threads {
+            Some(0) => return Err(value_error("threads must be at least 1")),
+            Some(1) => None,
+            Some(t) => Some(pool(t)?),
+            None => None,
+        };
+        let n = call.poses_b.poses.len();
+        let fresh = || (self.a.clone(), self.b.clone());
+        let one = |pair: &mut (Solid, Solid), i| answer(pair, call, i, None);
+        let all = || -> Vec<Answer> { (0..n).into_par_iter().map_init(fresh, one).collect() };
+        Ok(py.detach(|| match (&pool, threads) {
+            (_, Some(1)) => {
+                let mut pair = fresh();
+                (0..n).map(|i| one(&mut pair, i)).collect()
+            }
+            (Some(p), _) => p.install(all),
+            (None, _) => all(),
+        }))
     }
 }

@@ -46,3 +46,18 @@ def test_warm_starts_agree_with_cold_queries():
         assert str(e).startswith("poses[1]: rotation")
     else:
         raise AssertionError("a non-unit quaternion was accepted")
+
+
+def test_warm_start_refuses_threads():
+    """The extension's one entry point runs a warm-started motion on the calling thread:
+    asking it for threads as well is refused rather than ignored."""
+    a, b = revdist.Solid.model("pawn", eps=1e-4), revdist.Solid.model("cup", eps=1e-4)
+    pair = revdist._revdist.Pair(a, b)
+    p = np.array([2.0, 0, 0, 1, 0, 0, 0])
+    try:
+        pair.distance(p, threads=2)
+    except ValueError as e:
+        assert "runs in order on the calling thread" in str(e)
+    else:
+        raise AssertionError("threads were accepted with a warm start")
+    assert pair.distance(p, threads=2, warm=False)["value"] == pair.distance(p)["value"]

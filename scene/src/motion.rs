@@ -4,6 +4,7 @@
 
 use crate::format::Track;
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
+use revdist::rng::SplitMix64;
 use std::f64::consts::TAU;
 
 /// The pose of a track at `time`; `base` is the body's pose (the random motion moves about
@@ -62,15 +63,6 @@ fn keyframe_pose(
     Isometry3::from_parts(Translation3::from(translation), rotation)
 }
 
-/// SplitMix64: a small seeded generator (the motion must not depend on a crate's RNG).
-fn next(state: &mut u64) -> f64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-}
-
 /// Harmonics per coordinate of the random motion (periods `period / 1, / 2, / 3`).
 const HARMONICS: usize = 3;
 
@@ -82,16 +74,18 @@ fn random_pose(
     base: &Isometry3<f64>,
     time: f64,
 ) -> Isometry3<f64> {
-    let mut state = seed;
+    // The motion is a function of the seed alone: the shared generator's stream
+    // (`revdist::rng`), not a crate's whose stream may change with its version.
+    let mut rng = SplitMix64(seed);
     // Each coordinate: sum over harmonics of weight * sin(2 pi h t / period + phase), the
     // weights summing to 1, so |offset| <= amplitude per coordinate.
-    let wave = |state: &mut u64| {
+    let wave = |rng: &mut SplitMix64| {
         let mut v = 0.0;
         let mut total = 0.0;
         let mut terms = [(0.0, 0.0); HARMONICS];
         for (h, term) in terms.iter_mut().enumerate() {
             let w = 1.0 / (h + 1) as f64;
-            *term = (w, TAU * next(state));
+            *term = (w, TAU * rng.next_f64());
             total += w;
         }
         for (h, (w, phase)) in terms.iter().enumerate() {
@@ -99,13 +93,13 @@ fn random_pose(
         }
         v
     };
-    let offset = Vector3::new(wave(&mut state), wave(&mut state), wave(&mut state)) * amplitude;
+    let offset = Vector3::new(wave(&mut rng), wave(&mut rng), wave(&mut rng)) * amplitude;
     let axis = Vector3::new(
-        next(&mut state) - 0.5,
-        next(&mut state) - 0.5,
-        next(&mut state) - 0.5,
+        rng.next_f64() - 0.5,
+        rng.next_f64() - 0.5,
+        rng.next_f64() - 0.5,
     );
-    let turn = angle * wave(&mut state);
+    let turn = angle * wave(&mut rng);
     let rotation = match Unit::try_new(axis, 1e-9) {
         Some(a) => UnitQuaternion::from_axis_angle(&a, turn),
         None => UnitQuaternion::identity(),

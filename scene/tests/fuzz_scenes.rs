@@ -12,7 +12,8 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use mutate::{mutate_bytes, mutate_toml, Rng};
+use mutate::{mutate_bytes, mutate_toml};
+use revdist::rng::SplitMix64;
 use revdist_scene::format::Scene;
 
 /// Mutated scene files per run.
@@ -74,7 +75,7 @@ fn mutated_scene_files_are_refused_clearly_or_accepted_sane() {
         seeds.len() >= 4,
         "the example scenes are the fuzzer's seeds"
     );
-    let mut rng = Rng(seed ^ 0x5CE4E);
+    let mut rng = SplitMix64(seed ^ 0x5CE4E);
     let inputs: Vec<Vec<u8>> = (0..SCENE_INPUTS)
         .map(|i| {
             let base = rng.pick(&seeds).clone();

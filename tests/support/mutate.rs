@@ -2,31 +2,12 @@
 //! `scene/tests/fuzz_scenes.rs`): at the byte level (flips, invalid UTF-8, truncation,
 //! duplicated and deleted slices) and at the value level of TOML and JSON documents (numbers
 //! to NaN, infinities, 1e300, 1e-300, -0 and huge integers; fields dropped, duplicated and
-//! retyped; array elements dropped, repeated or extended).
+//! retyped; array elements dropped, repeated or extended). Each draws from the shared seeded
+//! generator (`revdist::rng`), so a fuzz run is reproducible from its seed.
 
 #![allow(dead_code)]
 
-/// A seeded generator (SplitMix64): each fuzz run is reproducible from its seed.
-pub struct Rng(pub u64);
-
-impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `0..n` (`n > 0`).
-    pub fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-
-    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
-        &items[self.below(items.len())]
-    }
-}
+use revdist::rng::SplitMix64;
 
 /// Numbers that break careless numerics, as TOML floats.
 const HOSTILE_FLOATS: [f64; 12] = [
@@ -63,7 +44,7 @@ const HOSTILE_JSON_NUMBERS: [&str; 13] = [
 ];
 
 /// One byte-level mutation of `input`.
-pub fn mutate_bytes(rng: &mut Rng, input: &[u8]) -> Vec<u8> {
+pub fn mutate_bytes(rng: &mut SplitMix64, input: &[u8]) -> Vec<u8> {
     let mut out = input.to_vec();
     if out.is_empty() {
         return vec![0xFF];
@@ -89,7 +70,7 @@ pub fn mutate_bytes(rng: &mut Rng, input: &[u8]) -> Vec<u8> {
 }
 
 /// One value-level mutation of a TOML document (or a byte-level one when it does not parse).
-pub fn mutate_toml(rng: &mut Rng, text: &str) -> Vec<u8> {
+pub fn mutate_toml(rng: &mut SplitMix64, text: &str) -> Vec<u8> {
     let Ok(mut doc) = text.parse::<toml::Table>() else {
         return mutate_bytes(rng, text.as_bytes());
     };
@@ -113,7 +94,7 @@ pub fn mutate_toml(rng: &mut Rng, text: &str) -> Vec<u8> {
     }
 }
 
-fn mutate_toml_value(rng: &mut Rng, v: &mut toml::Value, depth: usize) {
+fn mutate_toml_value(rng: &mut SplitMix64, v: &mut toml::Value, depth: usize) {
     use toml::Value;
     // Descend into a random child most of the time, else mutate this node.
     let descend = depth < 6 && rng.below(10) != 0;
@@ -163,7 +144,7 @@ fn mutate_toml_value(rng: &mut Rng, v: &mut toml::Value, depth: usize) {
 }
 
 /// One value-level mutation of a JSON line (or a byte-level one when it does not parse).
-pub fn mutate_json(rng: &mut Rng, line: &str) -> Vec<u8> {
+pub fn mutate_json(rng: &mut SplitMix64, line: &str) -> Vec<u8> {
     let Ok(mut v) = serde_json::from_str::<serde_json::Value>(line) else {
         return mutate_bytes(rng, line.as_bytes());
     };
@@ -192,7 +173,7 @@ pub fn mutate_json(rng: &mut Rng, line: &str) -> Vec<u8> {
     v.to_string().into_bytes()
 }
 
-fn mutate_json_value(rng: &mut Rng, v: &mut serde_json::Value, depth: usize) {
+fn mutate_json_value(rng: &mut SplitMix64, v: &mut serde_json::Value, depth: usize) {
     use serde_json::{json, Value};
     let descend = depth < 6 && rng.below(5) != 0;
     match v {

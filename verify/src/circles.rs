@@ -6,9 +6,9 @@ use crate::companion;
 use crate::exact_circle::{
     rotation_from_quaternion, rotation_from_rational_quaternion, ExactPair, RVec,
 };
-use crate::random_profiles::SplitMix64;
 use nalgebra::{Point3, Vector3};
 use revdist::circle::{binormals, min_distance, Circle3, Multiplicity};
+use revdist::rng::SplitMix64;
 use rug::Rational;
 
 /// Pass threshold: |d_float - d_exact| <= REL_TOL * scale, scale = max(ra, rb, |Cb - Ca|)

@@ -111,7 +111,7 @@ mod tests {
     use super::*;
     use crate::circles::random_case;
     use crate::exact_circle::count_real_roots;
-    use crate::random_profiles::SplitMix64;
+    use revdist::rng::SplitMix64;
     use rug::Rational;
     use std::cmp::Ordering;
 

@@ -131,8 +131,9 @@ enum Command {
         #[arg(long, value_parser = parse_shard)]
         shard: Option<(usize, usize)>,
     },
-    /// One query checked against the oracle: solids as built-in names or profile files,
-    /// B placed by --pose-b as in `revdist distance`.
+    /// One query checked against the oracle: solids as profile files or by any shape name
+    /// the campaigns print (built-in models, morph@T, straight-span, prim-..., frozen-...,
+    /// rand-s<SEED>-<K>), B placed by --pose-b as in `revdist distance`.
     Oracle {
         a: String,
         b: String,
@@ -365,19 +366,27 @@ fn crosscheck_command(
     i32::from(report.failures() > 0)
 }
 
-/// A built-in model or a profile file.
+/// A shape by any name the campaigns print (see `verify::queries::pool_shape`) or a profile
+/// file.
 fn load(spec: &str) -> Result<revdist::profile::Profile, String> {
-    if spec == "straight-span" {
-        return Ok(verify::queries::straight_span_profile());
+    if let Some(p) = verify::queries::pool_shape(spec) {
+        return p.map_err(|e| format!("'{spec}': {e}"));
     }
-    match revdist::models::model(spec) {
-        Ok(p) => Ok(p),
-        Err(revdist::models::ModelError::UnknownModel { .. }) => {
-            revdist::profile_file::load_path(std::path::Path::new(spec))
-                .map_err(|e| format!("'{spec}': {e}"))
-        }
-        Err(e) => Err(e.to_string()),
+    let path = std::path::Path::new(spec);
+    let looks_like_a_file = path.exists()
+        || path.components().count() > 1
+        || matches!(
+            path.extension().and_then(|e| e.to_str()),
+            Some("toml" | "json")
+        );
+    if looks_like_a_file {
+        return revdist::profile_file::load_path(path).map_err(|e| format!("'{spec}': {e}"));
     }
+    Err(format!(
+        "unknown shape '{spec}': give a profile file (.toml or .json) or a shape name the \
+         campaigns print: {}",
+        verify::queries::pool_shape_names()
+    ))
 }
 
 /// Parses `{"translation": [..], "rotation": [w, x, y, z]}` (both optional).

@@ -16,74 +16,8 @@ use crate::oracle::profile_eval::{cross, dist, sub, PieceEval, P2};
 use nalgebra::Point2;
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::{Profile, ProfileKind};
+use revdist::rng::SplitMix64;
 use std::f64::consts::{PI, TAU};
-
-/// SplitMix64: a small, good-quality seeded generator (Steele, Lea, Flood 2014).
-#[derive(Debug, Clone)]
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    /// Next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// Uniform integer in [lo, hi] (inclusive).
-    pub fn int(&mut self, lo: usize, hi: usize) -> usize {
-        lo + (self.next_u64() % (hi - lo + 1) as u64) as usize
-    }
-
-    /// Uniform integer in [lo, hi] (inclusive), for ranges with negative ends.
-    pub fn signed_int(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next_u64() % (hi - lo + 1) as u64) as i64
-    }
-
-    /// True with probability `p`.
-    pub fn chance(&mut self, p: f64) -> bool {
-        self.unit() < p
-    }
-
-    /// Log-uniform in [lo, hi].
-    pub fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.unit()).exp()
-    }
-
-    /// A uniformly distributed unit vector in 3-D.
-    pub fn unit_vector(&mut self) -> [f64; 3] {
-        let z = self.range(-1.0, 1.0);
-        let phi = self.range(0.0, TAU);
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        [r * phi.cos(), r * phi.sin(), z]
-    }
-
-    /// A uniformly distributed unit quaternion `[w, x, y, z]` (Shoemake).
-    pub fn quaternion(&mut self) -> [f64; 4] {
-        let (u1, u2, u3) = (self.unit(), self.range(0.0, TAU), self.range(0.0, TAU));
-        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-        [b * u3.cos(), a * u2.sin(), a * u2.cos(), b * u3.sin()]
-    }
-
-    /// A fresh generator for sub-task `k` (independent streams from one seed).
-    pub fn fork(&self, k: u64) -> SplitMix64 {
-        let mut g = SplitMix64(self.0 ^ k.wrapping_mul(0xD6E8_FEB8_6659_FD93));
-        g.next_u64();
-        g
-    }
-}
 
 /// What a generated profile contains (for reports).
 #[derive(Debug, Clone, Default)]

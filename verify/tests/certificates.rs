@@ -486,11 +486,8 @@ fn interior_cusp_profile() {
             }
         }
     }
-    let (other, _) = verify::random_profiles::random_profile(
-        &mut verify::random_profiles::SplitMix64(0),
-        "prop-a",
-        1.0,
-    );
+    let (other, _) =
+        verify::random_profiles::random_profile(&mut revdist::rng::SplitMix64(0), "prop-a", 1.0);
     checked(
         &other,
         &a,

@@ -240,7 +240,8 @@ fn sq_sign(idx: &PlanarIndex, q: [f64; 2]) -> bool {
 /// undercut the grid's lower bound, and must see the same overlap.
 #[test]
 fn oracle_agrees_with_brute_force_on_random_profiles() {
-    use verify::random_profiles::{random_profile, SplitMix64};
+    use revdist::rng::SplitMix64;
+    use verify::random_profiles::random_profile;
     let mut rng = SplitMix64(2024);
     for case in 0..6 {
         let (sa, sb) = (rng.range(0.6, 1.5), rng.range(0.6, 1.5));
@@ -248,7 +249,7 @@ fn oracle_agrees_with_brute_force_on_random_profiles() {
         let (pb, _) = random_profile(&mut rng, "b", sb);
         let (ia, ib) = (index(&pa), index(&pb));
         let q = rng.quaternion();
-        let dir = rng.unit_vector();
+        let dir = rng.direction();
         let s = rng.range(0.2, 1.2) * (ia.geom.radius + ib.geom.radius);
         let pos = Isometry3::from_parts(
             Translation3::new(dir[0] * s, dir[1] * s, dir[2] * s),

@@ -6,8 +6,9 @@
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
 use proptest::prelude::*;
+use revdist::rng::SplitMix64;
 use verify::queries::{single, PoseSpec};
-use verify::random_profiles::{random_profile, SplitMix64};
+use verify::random_profiles::random_profile;
 
 proptest! {
     // 40 cases unless PROPTEST_CASES asks for more (the seed comes from PROPTEST_RNG_SEED).

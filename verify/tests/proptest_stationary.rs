@@ -36,9 +36,10 @@ use nalgebra::{Isometry3, Point2, Translation3, Unit, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::Profile;
+use revdist::rng::SplitMix64;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use verify::queries::{single, PoseSpec};
-use verify::random_profiles::{to_toml, SplitMix64};
+use verify::random_profiles::to_toml;
 
 type P2 = [f64; 2];
 
@@ -776,15 +777,15 @@ fn place(
     n: Vector3<f64>,
     gap: f64,
 ) -> Isometry3<f64> {
-    let pole = Vector3::from(cap.pole.unwrap_or_else(|| rng.unit_vector()));
-    let perp = pole.cross(&Vector3::from(rng.unit_vector()));
+    let pole = cap.pole.map_or_else(|| rng.direction(), Vector3::from);
+    let perp = pole.cross(&rng.direction());
     let tilted = if perp.norm() > 1e-6 {
         UnitQuaternion::from_axis_angle(&Unit::new_normalize(perp), rng.range(0.0, cap.tilt)) * pole
     } else {
         pole
     };
     let align = UnitQuaternion::rotation_between(&tilted, &-n).unwrap_or_else(|| {
-        let any = tilted.cross(&Vector3::from(rng.unit_vector()));
+        let any = tilted.cross(&rng.direction());
         UnitQuaternion::from_axis_angle(&Unit::new_normalize(any), PI)
     });
     let r =

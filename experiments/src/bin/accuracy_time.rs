@@ -14,7 +14,7 @@ use clap::Parser;
 use experiments::cli::{Out, Poses, Seed};
 use experiments::driver::{self, DriverResult};
 use experiments::table::Table;
-use experiments::SplitMix;
+use experiments::{Draw, SplitMix};
 use nalgebra::{Isometry3, Translation3, Vector3};
 use plotters::prelude::*;
 use revdist::models;

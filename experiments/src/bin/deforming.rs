@@ -33,7 +33,7 @@ use experiments::provenance::Provenance;
 use experiments::shapes::{centre, diagonal, PAPER_EPS, PAPER_MODELS};
 use experiments::stats::{mean, us};
 use experiments::table::Table;
-use experiments::SplitMix;
+use experiments::{Draw, SplitMix};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use revdist::profile::Profile;
 use revdist::query::{distance_cached, QueryCache, QueryOptions};

@@ -17,7 +17,7 @@ use experiments::args::positive_count;
 use experiments::cli::{Out, Seed};
 use experiments::driver::{self, DriverResult};
 use experiments::table::Table;
-use experiments::SplitMix;
+use experiments::{Draw, SplitMix};
 use nalgebra::{Isometry3, Point2, Translation3};
 use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
 use revdist::query::{Patch, ProfileArc};

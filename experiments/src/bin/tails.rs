@@ -55,7 +55,7 @@ use experiments::provenance::Provenance;
 use experiments::shapes::profile;
 use experiments::stats::{median, quantile, us};
 use experiments::table::Table;
-use experiments::SplitMix;
+use experiments::{Draw, SplitMix};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use revdist::profile::Profile;

@@ -4,9 +4,9 @@
 
 use super::shapes::Prepared;
 use crate::queries::PoseSpec;
-use crate::random_profiles::SplitMix64;
 use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 use revdist::query::{distance, QueryOptions};
+use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 
 /// Gap range (length units) of separated poses.
@@ -137,7 +137,7 @@ pub fn make_pose_in<T: PoseTarget>(
 ) -> PoseSpec {
     let r = rng.quaternion();
     let q = UnitQuaternion::from_quaternion(Quaternion::new(r[0], r[1], r[2], r[3]));
-    let u = Vector3::from(rng.unit_vector());
+    let u = rng.direction();
     match kind {
         PoseKind::Separated | PoseKind::NearTouching => {
             let (lo, hi) = if kind == PoseKind::Separated {
@@ -157,7 +157,7 @@ pub fn make_pose_in<T: PoseTarget>(
         }
         PoseKind::Inside => {
             // Uniform in A's bounding ball about its axis centre.
-            let r = a.radius() * rng.unit().cbrt();
+            let r = a.radius() * rng.next_f64().cbrt();
             along(a, b, &q, &u, r)
         }
     }

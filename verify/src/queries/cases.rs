@@ -5,8 +5,8 @@ use super::placement::{
     axis_centre, draw_rotation, interior_point, newton_gap, place_at_gap, quick_eval, spec,
 };
 use super::pool::{pick, Shape, ShapeSet};
-use crate::random_profiles::SplitMix64;
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use revdist::rng::SplitMix64;
 use std::fmt::Write as _;
 
 /// How B is placed.
@@ -120,7 +120,7 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
     let eps = eps_list[rng.int(0, eps_list.len() - 1)];
     // Half the queries run with the default tolerance (the trees' accuracy), a third run to
     // the end (tolerance 0), the rest ask for a coarse tolerance; some refine witnesses.
-    let u = rng.unit();
+    let u = rng.next_f64();
     let tolerance = if u < 0.15 {
         Some(rng.log_range(1e-4, 1e-1))
     } else if u < 0.5 {
@@ -129,7 +129,7 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
         None
     };
     let refine = rng.chance(0.15);
-    let u = rng.unit();
+    let u = rng.next_f64();
     let kind = match u {
         _ if u < 0.07 => PoseKind::Far,
         _ if u < 0.25 => PoseKind::Separated,
@@ -159,7 +159,7 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
             );
             let (q, _) = draw_rotation(&mut rng);
             let r = if rng.chance(0.5) { 1e3 } else { 1e6 };
-            let u = Vector3::from(rng.unit_vector());
+            let u = rng.direction();
             let pose = spec(u * r * rng.range(1.0, 2.0), q);
             case(kind, a, b, pose, format!("|t| ~ {r:e}"))
         }
@@ -185,7 +185,7 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
                 }
                 // Slide along a random line until the surface gap to the wall is the target.
                 let target = rng.log_range(1e-7, 1e-2);
-                let u = Vector3::from(rng.unit_vector());
+                let u = rng.direction();
                 let f = |s: f64| {
                     let pos = spec(p0 + u * s, q).isometry();
                     let (_, d, slope) = quick_eval(&shapes[a], &shapes[b], &pos, &u);
@@ -253,7 +253,7 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
                 (_, None) => {
                     let (q, _) = draw_rotation(&mut rng);
                     let far = shapes[a].index.geom.radius + shapes[b].index.geom.radius;
-                    let u = Vector3::from(rng.unit_vector());
+                    let u = rng.direction();
                     case(
                         PoseKind::Separated,
                         a,

@@ -28,7 +28,10 @@ mod run;
 
 pub use cases::{make_case, Case, PoseKind, PoseSpec};
 pub use checked_query::{single, CaseResult};
-pub use pool::{build_pool, straight_span_profile, Shape, ShapeSet, PRIMITIVE_PREFIX};
+pub use pool::{
+    build_pool, pool_shape, pool_shape_names, straight_span_profile, Shape, ShapeSet,
+    FROZEN_PREFIX, PRIMITIVE_PREFIX,
+};
 pub use regressions::regression_cases;
 pub use report::Summary;
 pub use run::{run, CampaignOptions, DEFAULT_EPS};

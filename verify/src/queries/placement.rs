@@ -6,8 +6,8 @@
 use super::cases::PoseSpec;
 use super::pool::Shape;
 use crate::oracle::{surface_distance, OracleOptions};
-use crate::random_profiles::SplitMix64;
 use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
+use revdist::rng::SplitMix64;
 
 /// The quick oracle at a pose: `(signed gap, unsigned surface distance, d gap / d s)` for
 /// B moved along `u` (the slope is `u . n`, `n` the unit vector from A's witness to B's).
@@ -115,7 +115,7 @@ pub(super) fn spec(translation: Vector3<f64>, q: [f64; 4]) -> PoseSpec {
 
 /// A rotation for B: random (most), about z only (coaxial with A), flipped, or none.
 pub(super) fn draw_rotation(rng: &mut SplitMix64) -> ([f64; 4], bool) {
-    let u = rng.unit();
+    let u = rng.next_f64();
     if u < 0.65 {
         (rng.quaternion(), false)
     } else if u < 0.85 {
@@ -153,7 +153,7 @@ pub(super) fn place_at_gap(
         let u = if coaxial && rng.chance(0.5) {
             Vector3::new(0.0, 0.0, if rng.chance(0.5) { 1.0 } else { -1.0 })
         } else {
-            Vector3::from(rng.unit_vector())
+            rng.direction()
         };
         let far = a.index.geom.radius + b.index.geom.radius + a.size + b.size;
         let scale = a.size.max(b.size);

@@ -3,8 +3,9 @@
 
 use super::regressions::frozen_profiles;
 use crate::oracle::{self, PlanarIndex};
-use crate::random_profiles::{random_profile, SplitMix64};
+use crate::random_profiles::random_profile;
 use revdist::profile::Profile;
+use revdist::rng::SplitMix64;
 use std::sync::Arc;
 
 /// A profile of the pool.
@@ -51,27 +52,102 @@ pub fn build_pool(seed: u64, n_random: usize) -> Vec<Shape> {
         let p = revdist::models::model(&name).expect("morph frame");
         push(name, p, false);
     }
-    push("straight-span".into(), straight_span_profile(), true);
+    push(STRAIGHT_SPAN.into(), straight_span_profile(), true);
     for (name, p) in frozen_profiles() {
-        push(format!("frozen-{name}"), p, true);
+        push(format!("{FROZEN_PREFIX}{name}"), p, true);
     }
-    let base = SplitMix64(seed ^ 0x05EE_D0FF_11E5);
     for k in 0..n_random {
-        let mut rng = base.fork(k as u64);
-        // Mostly unit-sized; every fifth large (outer solids for nesting), every fifth tiny.
-        let size = match k % 5 {
-            3 => rng.range(3.0, 5.0),
-            4 => rng.range(0.08, 0.3),
-            _ => rng.range(0.6, 2.0),
-        };
-        let name = format!("rand-s{seed}-{k}");
-        let (p, _) = random_profile(&mut rng, &name, size);
-        push(name, p, true);
+        push(random_name(seed, k), random_pool_profile(seed, k), true);
     }
     for (name, p) in primitive_profiles() {
         push(name, p, false);
     }
     shapes
+}
+
+/// Mixed into the campaign's seed for the random profiles' stream (so that it differs from
+/// the cases' streams drawn from the same seed).
+const RANDOM_PROFILES_STREAM: u64 = 0x05EE_D0FF_11E5;
+
+/// Name prefix of the seeded random profiles: `rand-s<SEED>-<K>`.
+const RANDOM_PREFIX: &str = "rand-s";
+
+/// Name prefix of the frozen random profiles (`verify/regressions/<name>.toml`).
+pub const FROZEN_PREFIX: &str = "frozen-";
+
+/// Name of the profile with an exactly straight span ([`straight_span_profile`]).
+const STRAIGHT_SPAN: &str = "straight-span";
+
+/// The pool's name of random profile `k` of campaign seed `seed`.
+fn random_name(seed: u64, k: usize) -> String {
+    format!("{RANDOM_PREFIX}{seed}-{k}")
+}
+
+/// Random profile `k` of campaign seed `seed`: each is drawn from its own fork of the seed's
+/// stream, so one can be rebuilt alone (by name, for `verify oracle`) exactly as the pool
+/// holds it.
+fn random_pool_profile(seed: u64, k: usize) -> Profile {
+    let mut rng = SplitMix64(seed ^ RANDOM_PROFILES_STREAM).fork(k as u64);
+    // Mostly unit-sized; every fifth large (outer solids for nesting), every fifth tiny.
+    let size = match k % 5 {
+        3 => rng.range(3.0, 5.0),
+        4 => rng.range(0.08, 0.3),
+        _ => rng.range(0.6, 2.0),
+    };
+    random_profile(&mut rng, &random_name(seed, k), size).0
+}
+
+/// `(seed, k)` of a name `rand-s<SEED>-<K>`.
+fn parse_random_name(name: &str) -> Option<(u64, usize)> {
+    let (seed, k) = name.strip_prefix(RANDOM_PREFIX)?.split_once('-')?;
+    Some((seed.parse().ok()?, k.parse().ok()?))
+}
+
+/// A shape of the pool by the name the campaigns print (`verify queries` in every mode,
+/// `verify toi`, `verify crosscheck`), rebuilt alone: a built-in model or `morph@T`,
+/// `straight-span`, a primitive (`prim-...`), a frozen profile (`frozen-<name>`) or a seeded
+/// random profile (`rand-s<SEED>-<K>`). `None`: not a pool name; `Some(Err)`: a pool name
+/// whose profile cannot be built (a bad `morph@T`).
+pub fn pool_shape(name: &str) -> Option<Result<Profile, String>> {
+    match revdist::models::model(name) {
+        Ok(p) => return Some(Ok(p)),
+        Err(revdist::models::ModelError::UnknownModel { .. }) => {}
+        Err(e) => return Some(Err(e.to_string())),
+    }
+    if name == STRAIGHT_SPAN {
+        return Some(Ok(straight_span_profile()));
+    }
+    let known = |list: Vec<(String, Profile)>, wanted: &str| {
+        list.into_iter()
+            .find(|(n, _)| n == wanted)
+            .map(|(_, p)| Ok(p))
+    };
+    if name.starts_with(PRIMITIVE_PREFIX) {
+        return known(primitive_profiles(), name);
+    }
+    if let Some(frozen) = name.strip_prefix(FROZEN_PREFIX) {
+        return known(frozen_profiles(), frozen);
+    }
+    let (seed, k) = parse_random_name(name)?;
+    Some(Ok(random_pool_profile(seed, k)))
+}
+
+/// The names [`pool_shape`] accepts, for error messages.
+pub fn pool_shape_names() -> String {
+    let listed = |list: Vec<(String, Profile)>, prefix: &str| {
+        list.into_iter()
+            .map(|(n, _)| format!("{prefix}{n}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    format!(
+        "the built-in models ({}), {}T with T a number, {STRAIGHT_SPAN}, the primitives ({}), \
+         the frozen profiles ({}), or {RANDOM_PREFIX}<SEED>-<K> (random profile K of seed SEED)",
+        revdist::models::model_names().join(", "),
+        revdist::models::MORPH_PREFIX,
+        listed(primitive_profiles(), ""),
+        listed(frozen_profiles(), FROZEN_PREFIX),
+    )
 }
 
 /// Name prefix of the balls and solid tori appended to the pool (after every other shape,
@@ -137,7 +213,7 @@ pub fn straight_span_profile() -> Profile {
         None,
     )
     .expect("valid curve");
-    Profile::new("straight-span", vec![c]).expect("valid profile")
+    Profile::new(STRAIGHT_SPAN, vec![c]).expect("valid profile")
 }
 
 /// Which shapes a campaign draws from.
@@ -216,7 +292,7 @@ pub(super) fn pick(
             }
         }
         _ => {
-            let u = rng.unit();
+            let u = rng.next_f64();
             let statics = revdist::models::model_names().len();
             if u < 0.3 || random.is_empty() {
                 rng.int(0, statics - 1)
@@ -226,6 +302,61 @@ pub(super) fn pick(
                 let v = by_class(0.45, 3.0);
                 from(rng, if v.is_empty() { &random } else { &v })
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every shape of a campaign's pool (built-in, M_t frames, straight span, frozen,
+    /// seeded random, primitives) is rebuilt by its name exactly as the pool holds it.
+    #[test]
+    fn every_pool_name_rebuilds_its_shape() {
+        let shapes = build_pool(5, 6);
+        for prefix in [
+            "morph@",
+            STRAIGHT_SPAN,
+            FROZEN_PREFIX,
+            RANDOM_PREFIX,
+            PRIMITIVE_PREFIX,
+        ] {
+            assert!(
+                shapes.iter().any(|s| s.name.starts_with(prefix)),
+                "{prefix}"
+            );
+        }
+        for sh in &shapes {
+            let p = pool_shape(&sh.name)
+                .unwrap_or_else(|| panic!("'{}' is not a pool name", sh.name))
+                .unwrap();
+            assert!(p == *sh.profile, "'{}' rebuilds another profile", sh.name);
+        }
+    }
+
+    #[test]
+    fn other_names_are_not_pool_names() {
+        for name in [
+            "prim-ball-huge",
+            "frozen-rand-s1-0",
+            "rand-s5",
+            "rand-sx-1",
+            "rand-s5-1-2",
+            "spheres",
+            "shapes/sphere.toml",
+        ] {
+            assert!(pool_shape(name).is_none(), "{name}");
+        }
+        assert!(pool_shape("morph@x").unwrap().is_err());
+        let names = pool_shape_names();
+        for listed in [
+            "sphere",
+            "prim-ball-big",
+            "frozen-rand-s1-25",
+            "rand-s<SEED>-<K>",
+        ] {
+            assert!(names.contains(listed), "{listed} missing from: {names}");
         }
     }
 }

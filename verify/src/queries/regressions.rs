@@ -5,7 +5,7 @@
 //! cases with `revdist distance --batch` (a test keeps it in step).
 
 use super::cases::{Case, PoseKind, PoseSpec};
-use super::pool::Shape;
+use super::pool::{Shape, FROZEN_PREFIX};
 use revdist::profile::Profile;
 use std::path::PathBuf;
 
@@ -109,7 +109,7 @@ pub(super) fn frozen_profiles() -> Vec<(String, Profile)> {
 /// The pool name of a case's shape (frozen random profiles are `frozen-<name>`).
 fn pool_name(name: &str) -> String {
     if is_frozen_profile(name) {
-        format!("frozen-{name}")
+        format!("{FROZEN_PREFIX}{name}")
     } else {
         name.to_string()
     }

@@ -7,9 +7,9 @@ pub mod check;
 pub mod motions;
 
 use crate::oracle::{self, PlanarIndex};
-use crate::random_profiles::SplitMix64;
 use check::{Breach, Scene};
 use motions::{random_motion, Extent, Family, MotionCase};
+use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 use revdist::toi::{time_of_impact, Motion, ToiOptions, ToiOutcome};
 use std::collections::BTreeMap;

@@ -2,8 +2,8 @@
 //! about its own origin in place), never touching (B passes outside the bounding spheres)
 //! and both moving, with contact distances 0, 0.01 and 0.1.
 
-use crate::random_profiles::SplitMix64;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use revdist::rng::SplitMix64;
 
 /// The families of motions, in the order the generator cycles through them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -52,7 +52,7 @@ pub struct MotionCase {
 }
 
 fn vec(rng: &mut SplitMix64) -> Vector3<f64> {
-    Vector3::from(rng.unit_vector())
+    rng.direction()
 }
 
 fn rotation(rng: &mut SplitMix64) -> UnitQuaternion<f64> {
