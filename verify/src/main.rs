@@ -69,7 +69,7 @@ enum Command {
         /// Run one shard I/N of the campaign (cases whose index is I modulo N; the same
         /// --seed and --count in every shard); merge the shards' --out directories with
         /// `verify merge-queries`.
-        #[arg(long, value_parser = parse_shard)]
+        #[arg(long, value_parser = parse_shard, allow_hyphen_values = true)]
         shard: Option<(usize, usize)>,
     },
     /// Adds up the shards of one `verify queries` campaign (their --out directories, each
@@ -128,7 +128,7 @@ enum Command {
         #[arg(long, default_value_t = 0)]
         threads: usize,
         /// Run one shard I/N (cases whose index is I modulo N).
-        #[arg(long, value_parser = parse_shard)]
+        #[arg(long, value_parser = parse_shard, allow_hyphen_values = true)]
         shard: Option<(usize, usize)>,
     },
     /// One query checked against the oracle: solids as built-in names or profile files,
@@ -471,19 +471,8 @@ fn oracle_command(
     Ok(())
 }
 
-/// `I/N` with `I < N`, for `--shard`.
+/// `I/N` with `I < N`, for `--shard` ([`verify::shard::Shard`]).
 fn parse_shard(text: &str) -> Result<(usize, usize), String> {
-    let (i, n) = text
-        .split_once('/')
-        .ok_or_else(|| format!("'{text}' is not of the form I/N (e.g. 0/4)"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<usize>()
-            .map_err(|_| format!("'{text}': '{v}' is not a whole number"))
-    };
-    let (i, n) = (parse(i)?, parse(n)?);
-    if n == 0 || i >= n {
-        return Err(format!("'{text}': need 0 <= I < N"));
-    }
-    Ok((i, n))
+    let s: verify::shard::Shard = text.parse()?;
+    Ok((s.index, s.count))
 }
