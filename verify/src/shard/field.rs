@@ -142,7 +142,17 @@ impl Field for Duration {
 macro_rules! scalar {
     ($($t:ty),*) => {$( impl Scalar for $t {} impl Item for $t {} )*};
 }
-scalar!(f64, usize, u64, u32, i32, bool, String, &'static str, Duration);
+scalar!(
+    f64,
+    usize,
+    u64,
+    u32,
+    i32,
+    bool,
+    String,
+    &'static str,
+    Duration
+);
 
 impl<T: Scalar> Field for Option<T> {
     fn text(&self) -> String {
@@ -196,7 +206,15 @@ mod tests {
 
     #[test]
     fn values_come_back_bit_for_bit() {
-        for x in [0.1, -0.0, 1e-300, 5e-324, f64::MAX, 1.0 / 3.0, f64::INFINITY] {
+        for x in [
+            0.1,
+            -0.0,
+            1e-300,
+            5e-324,
+            f64::MAX,
+            1.0 / 3.0,
+            f64::INFINITY,
+        ] {
             let back = f64::parse(&x.text()).unwrap();
             assert_eq!(back.to_bits(), x.to_bits(), "{x}");
         }
@@ -204,7 +222,9 @@ mod tests {
         round(12usize);
         round(-3i32);
         round(true);
-        round(String::from("revdist distance a b --pose-b '{\"t\": [1, 2]}'; 100%: ~x"));
+        round(String::from(
+            "revdist distance a b --pose-b '{\"t\": [1, 2]}'; 100%: ~x",
+        ));
         round(Some(2.5f64));
         round(None::<usize>);
         round(vec![(1.0f64, 2.0f64), (3.0, 4.0)]);

@@ -103,7 +103,10 @@ impl Flags {
         }
         (!self.merge.is_empty()).then(|| {
             let dirs: Vec<String> = self.merge.iter().map(|d| d.display().to_string()).collect();
-            ("merged_shards", format!("{} ({})", dirs.len(), dirs.join(", ")))
+            (
+                "merged_shards",
+                format!("{} ({})", dirs.len(), dirs.join(", ")),
+            )
         })
     }
 

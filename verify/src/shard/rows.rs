@@ -245,12 +245,11 @@ pub fn merge<R: Record>(
     }
     let missing: Vec<usize> = (0..seen.len()).filter(|&i| !seen[i]).collect();
     if !missing.is_empty() {
-        return Err(format!(
-            "shards {missing:?} of {} are missing",
-            seen.len()
-        ));
+        return Err(format!("shards {missing:?} of {} are missing", seen.len()));
     }
-    let absent: Vec<usize> = (0..by_unit.len()).filter(|&u| by_unit[u].is_none()).collect();
+    let absent: Vec<usize> = (0..by_unit.len())
+        .filter(|&u| by_unit[u].is_none())
+        .collect();
     if !absent.is_empty() {
         return Err(format!(
             "units {absent:?} of {} are in no shard's rows (a shard stopped early?)",

@@ -47,7 +47,10 @@ fn same(a: &[Demo], b: &[Demo]) -> bool {
             x.pair == y.pair
                 && x.eps.to_bits() == y.eps.to_bits()
                 && x.best == y.best
-                && x.times.iter().map(|t| t.to_bits()).eq(y.times.iter().map(|t| t.to_bits()))
+                && x.times
+                    .iter()
+                    .map(|t| t.to_bits())
+                    .eq(y.times.iter().map(|t| t.to_bits()))
         })
 }
 
@@ -69,13 +72,13 @@ fn bad_shards_are_clear_errors() {
     ] {
         let e = bad.parse::<Shard>().unwrap_err();
         assert!(e.contains(says), "{bad}: {e}");
-        let e = flags(&["--shard", bad]).err().expect("an error").to_string();
+        let e = flags(&["--shard", bad])
+            .err()
+            .expect("an error")
+            .to_string();
         assert!(e.contains("--shard") && e.contains(says), "{bad}: {e}");
     }
-    assert_eq!(
-        "1/3".parse::<Shard>(),
-        Ok(Shard { index: 1, count: 3 })
-    );
+    assert_eq!("1/3".parse::<Shard>(), Ok(Shard { index: 1, count: 3 }));
     assert!(flags(&["--shard", "0/2", "--merge", "x"]).is_err());
 }
 
@@ -112,7 +115,10 @@ fn two_shards_merge_to_the_unsharded_rows() {
     assert!(e.contains("`poses` is '5' there, '6' in this merge"), "{e}");
     let one = flags(&["--merge", &dirs[0].display().to_string()]).unwrap();
     assert!(err(&one, &settings(5)).contains("shards [1] of 2 are missing"));
-    let twice = flags(&["--merge", &format!("{},{}", dirs[0].display(), dirs[0].display())]);
+    let twice = flags(&[
+        "--merge",
+        &format!("{},{}", dirs[0].display(), dirs[0].display()),
+    ]);
     assert!(err(&twice.unwrap(), &settings(5)).contains("shard 0/2 is given twice"));
     // A shard whose file lost a row.
     let path = rows::rows_path(&dirs[1], "demo");
@@ -120,7 +126,10 @@ fn two_shards_merge_to_the_unsharded_rows() {
     let cut: Vec<&str> = text.lines().filter(|l| !l.starts_with("3,")).collect();
     std::fs::write(&path, cut.join("\n")).unwrap();
     assert!(err(&merge, &settings(5)).contains("units [3] of 7 are in no shard's rows"));
-    let e = err(&flags(&["--merge", "/nonexistent-shard"]).unwrap(), &settings(5));
+    let e = err(
+        &flags(&["--merge", "/nonexistent-shard"]).unwrap(),
+        &settings(5),
+    );
     assert!(e.contains("cannot read"), "{e}");
     for d in dirs {
         std::fs::remove_dir_all(d).unwrap();

@@ -1,0 +1,147 @@
+//! `--shard I/N` and `--merge DIR...` of the long drivers (`verify::shard`): on a tiny
+//! configuration, two shards merged give the unsharded run's table, the same work units in
+//! the same order with the same non-timing columns (timings differ from run to run), and bad
+//! `--shard` values are usage errors that say what is wrong.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn output(bin: &str, args: &[&str], extra: &[&str]) -> Output {
+    Command::new(bin)
+        .args(args)
+        .args(extra)
+        .output()
+        .expect("driver runs")
+}
+
+fn run(bin: &str, args: &[&str], extra: &[&str]) {
+    let out = output(bin, args, extra);
+    assert!(
+        out.status.success(),
+        "{bin} {args:?} {extra:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// The CSV's columns `names` (by header), one vector per data row.
+fn columns(path: &Path, names: &[&str]) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let at: Vec<usize> = names
+        .iter()
+        .map(|n| {
+            header
+                .iter()
+                .position(|h| h == n)
+                .unwrap_or_else(|| panic!("no column {n} in {header:?}"))
+        })
+        .collect();
+    lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            at.iter().map(|&k| cells[k].to_owned()).collect()
+        })
+        .collect()
+}
+
+fn temp(tag: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("revdist-shard-{tag}-{}", std::process::id()))
+}
+
+/// Runs `bin args` unsharded, as shards 0/2 and 1/2, and merged; `csv` of the merge must
+/// hold the unsharded run's rows in `same` (work units and non-timing columns). Returns
+/// the merge's directory.
+fn merged_equals_unsharded(
+    tag: &str,
+    bin: &str,
+    args: &[&str],
+    csv: &str,
+    same: &[&str],
+) -> PathBuf {
+    let dirs: Vec<PathBuf> = ["whole", "s0", "s1", "merged"]
+        .iter()
+        .map(|d| temp(&format!("{tag}-{d}")))
+        .collect();
+    let s = |p: &PathBuf| p.to_str().expect("utf-8 path").to_owned();
+    run(bin, args, &["--out", &s(&dirs[0])]);
+    run(bin, args, &["--out", &s(&dirs[1]), "--shard", "0/2"]);
+    run(bin, args, &["--out", &s(&dirs[2]), "--shard", "1/2"]);
+    assert!(
+        !dirs[1].join(csv).exists(),
+        "a shard writes raw rows, not the table"
+    );
+    let list = format!("{},{}", s(&dirs[2]), s(&dirs[1]));
+    run(bin, args, &["--out", &s(&dirs[3]), "--merge", &list]);
+    let whole = columns(&dirs[0].join(csv), same);
+    let merged = columns(&dirs[3].join(csv), same);
+    assert!(!whole.is_empty());
+    assert_eq!(
+        merged, whole,
+        "{bin}: merged shards vs unsharded ({same:?})"
+    );
+    // A merge with other settings than the shards' is refused.
+    let mut other = args.to_vec();
+    other.extend(["--seed", "12345"]);
+    let out = output(bin, &other, &["--out", &s(&dirs[3]), "--merge", &list]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("run with other settings"), "{err}");
+    for d in &dirs[..3] {
+        std::fs::remove_dir_all(d).unwrap();
+    }
+    dirs[3].clone()
+}
+
+#[test]
+fn bad_shard_values_are_usage_errors() {
+    for (bad, says) in [
+        ("3/2", "need 0 <= I < N"),
+        ("0/0", "need 0 <= I < N"),
+        ("a/b", "'a' is not a whole number"),
+        ("2", "not of the form I/N"),
+    ] {
+        let out = output(env!("CARGO_BIN_EXE_fcl_bench"), &["--shard", bad], &[]);
+        assert_eq!(out.status.code(), Some(2), "{bad}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("--shard") && err.contains(says),
+            "{bad}: {err}"
+        );
+    }
+}
+
+#[test]
+fn fcl_bench_shards_merge() {
+    let dir = merged_equals_unsharded(
+        "fcl_bench",
+        env!("CARGO_BIN_EXE_fcl_bench"),
+        &[
+            "--pairs",
+            "torus-torus,pawn-cup",
+            "--eps",
+            "1e-3,1e-4",
+            "--poses",
+            "3",
+            "--poses-1e-5",
+            "3",
+        ],
+        "fcl_bench.csv",
+        &[
+            "pair",
+            "eps",
+            "poses",
+            "tris_balanced",
+            "tris_capped",
+            "h_sum_balanced",
+            "h_sum_capped",
+            "rev_max_width",
+            "rev_query_tree_bytes",
+            "obbrss_bytes_balanced",
+            "rss_bytes_capped",
+            "violations",
+        ],
+    );
+    assert!(dir.join("fcl_bench.md").exists());
+    std::fs::remove_dir_all(dir).unwrap();
+}
