@@ -145,3 +145,31 @@ fn fcl_bench_shards_merge() {
     assert!(dir.join("fcl_bench.md").exists());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn motion_shards_merge() {
+    let dir = merged_equals_unsharded(
+        "motion",
+        env!("CARGO_BIN_EXE_motion"),
+        &[
+            "--frames",
+            "4",
+            "--eps",
+            "1e-3,1e-4",
+            "--pairs",
+            "pawn-cup,torus-torus,cup-bottle",
+        ],
+        "motion.csv",
+        &[
+            "pair",
+            "eps",
+            "frames",
+            "mean_node_pairs",
+            "mean_leaf_tests",
+            "min_distance",
+            "violations",
+        ],
+    );
+    assert!(dir.join("motion_eps1e-4.svg").exists());
+    std::fs::remove_dir_all(dir).unwrap();
+}
