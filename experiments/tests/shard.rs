@@ -173,3 +173,23 @@ fn motion_shards_merge() {
     assert!(dir.join("motion_eps1e-4.svg").exists());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn deforming_shards_merge() {
+    let dir = merged_equals_unsharded(
+        "deforming",
+        env!("CARGO_BIN_EXE_deforming"),
+        &["--frames", "3", "--eps", "1e-3,2e-3,1e-4"],
+        "deforming.csv",
+        &[
+            "static_model",
+            "eps",
+            "frames",
+            "mt_triangles_mean",
+            "gap_mean",
+            "violations",
+        ],
+    );
+    assert!(dir.join("deforming.svg").exists());
+    std::fs::remove_dir_all(dir).unwrap();
+}

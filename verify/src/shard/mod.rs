@@ -111,7 +111,7 @@ impl Flags {
     }
 
     /// The whole campaign's rows, in unit order, once the run computed `rows` (`(unit,
-    /// row)` for [`Self::units`]): an unsharded run's own; `None` for a shard, which writes
+    /// row)` for [`Self::units`], one or more rows per unit, in order): an unsharded run's own; `None` for a shard, which writes
     /// its rows to `dir` instead; for a merge, the rows of the shards' directories.
     /// `name` is the experiment (its file's name), `settings` what every shard must share.
     pub fn finish<R: Record>(
@@ -133,25 +133,38 @@ impl Flags {
         if !self.merge.is_empty() {
             return rows::merge(&self.merge, name, settings).map(Some);
         }
-        rows.sort_by_key(|(u, _)| *u);
-        if rows.iter().map(|(u, _)| *u).ne(0..units) {
-            return Err(format!("{name}: the run did not compute every unit once"));
+        rows.sort_by_key(|(u, _)| *u); // stable: a unit's rows keep their order
+        let mut done: Vec<usize> = rows.iter().map(|(u, _)| *u).collect();
+        done.dedup();
+        if done.into_iter().ne(0..units) {
+            return Err(format!("{name}: the run did not compute every unit"));
         }
         Ok(Some(rows.into_iter().map(|(_, r)| r).collect()))
     }
 
     /// [`Self::finish`] after computing this run's units one after the other with
-    /// `compute(unit)`.
+    /// `compute(unit)`, one row each.
     pub fn run<R: Record, E: From<String>>(
         &self,
-        (dir, name): (&Path, &str),
+        job: (&Path, &str),
         settings: &[(&str, String)],
         units: usize,
         mut compute: impl FnMut(usize) -> Result<R, E>,
     ) -> Result<Option<Vec<R>>, E> {
+        self.run_many(job, settings, units, |u| compute(u).map(|r| vec![r]))
+    }
+
+    /// [`Self::run`] for units of several rows each.
+    pub fn run_many<R: Record, E: From<String>>(
+        &self,
+        (dir, name): (&Path, &str),
+        settings: &[(&str, String)],
+        units: usize,
+        mut compute: impl FnMut(usize) -> Result<Vec<R>, E>,
+    ) -> Result<Option<Vec<R>>, E> {
         let mut rows = Vec::new();
         for u in self.units(units) {
-            rows.push((u, compute(u)?));
+            rows.extend(compute(u)?.into_iter().map(|r| (u, r)));
         }
         Ok(self.finish((dir, name), settings, units, rows)?)
     }

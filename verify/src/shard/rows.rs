@@ -177,9 +177,9 @@ fn read<R: Record>(dir: &Path, name: &str) -> Result<ShardFile<R>, String> {
 }
 
 /// The rows of every unit of experiment `name`, read from the shards' directories `dirs`
-/// and returned in unit order. The shards must have been run with `settings` (the merge's
+/// and returned in unit order (a unit's rows, if it has several, in their order). The shards must have been run with `settings` (the merge's
 /// own, from the same flags), by one commit, as shards `0..N` of one split, each holding
-/// exactly its units (`unit % N == I`), together all `U` units.
+/// exactly its units (`unit % N == I`), together all `U` units (each with a row at least).
 pub fn merge<R: Record>(
     dirs: &[PathBuf],
     name: &str,
@@ -198,7 +198,7 @@ pub fn merge<R: Record>(
         .collect::<Result<Vec<_>, _>>()?;
     let commit = files[0].commit.clone();
     let mut seen = vec![false; files[0].shard.count];
-    let mut by_unit: Vec<Option<R>> = (0..files[0].units).map(|_| None).collect();
+    let mut by_unit: Vec<Vec<R>> = (0..files[0].units).map(|_| Vec::new()).collect();
     for f in files {
         let at = |what: String| format!("'{}': {what}", f.path.display());
         if (f.shard.count, f.units) != (seen.len(), by_unit.len()) {
@@ -238,9 +238,7 @@ pub fn merge<R: Record>(
             if unit >= by_unit.len() || !f.shard.owns(unit) {
                 return Err(at(format!("unit {unit} is not one of shard {}'s", f.shard)));
             }
-            if by_unit[unit].replace(row).is_some() {
-                return Err(at(format!("unit {unit} appears twice")));
-            }
+            by_unit[unit].push(row);
         }
     }
     let missing: Vec<usize> = (0..seen.len()).filter(|&i| !seen[i]).collect();
@@ -248,7 +246,7 @@ pub fn merge<R: Record>(
         return Err(format!("shards {missing:?} of {} are missing", seen.len()));
     }
     let absent: Vec<usize> = (0..by_unit.len())
-        .filter(|&u| by_unit[u].is_none())
+        .filter(|&u| by_unit[u].is_empty())
         .collect();
     if !absent.is_empty() {
         return Err(format!(
@@ -256,5 +254,5 @@ pub fn merge<R: Record>(
             by_unit.len()
         ));
     }
-    Ok(by_unit.into_iter().map(|r| r.expect("checked")).collect())
+    Ok(by_unit.into_iter().flatten().collect())
 }
