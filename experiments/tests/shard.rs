@@ -193,3 +193,42 @@ fn deforming_shards_merge() {
     assert!(dir.join("deforming.svg").exists());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn pareto_shards_merge() {
+    // Three pairs over two shards; the triangle cap leaves FCL's finer levels out of the
+    // bigger pairs, and the merged report lists them as the unsharded one does.
+    let dir = merged_equals_unsharded(
+        "pareto",
+        env!("CARGO_BIN_EXE_pareto"),
+        &[
+            "--poses",
+            "3",
+            "--pairs",
+            "torus-torus,pawn-cup,cup-bottle",
+            "--eps",
+            "1e-2,1e-3",
+            "--refine-eps",
+            "1e-3",
+            "--fcl-eps",
+            "1e-2,1e-3",
+            "--max-triangles",
+            "20000",
+        ],
+        "pareto.csv",
+        &[
+            "method",
+            "pair",
+            "eps",
+            "poses",
+            "mean_node_pairs",
+            "zero_lower",
+            "checks",
+            "violations",
+        ],
+    );
+    let md = std::fs::read_to_string(dir.join("pareto.md")).unwrap();
+    let skipped: Vec<&str> = md.lines().filter(|l| l.contains("not run: predicted")).collect();
+    assert!(!skipped.is_empty(), "the cap skipped no level: {md}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
