@@ -50,12 +50,26 @@ fn temp(tag: &str) -> PathBuf {
 }
 
 /// Runs `bin args` unsharded, as shards 0/2 and 1/2, and merged; `csv` of the merge must
-/// hold the unsharded run's rows in `same` (work units and non-timing columns). Returns
-/// the merge's directory.
+/// hold the unsharded run's rows in `same` (work units and non-timing columns). A merge
+/// with `--seed 12345` added (other settings than the shards') must be refused. Returns the
+/// merge's directory.
 fn merged_equals_unsharded(
     tag: &str,
     bin: &str,
     args: &[&str],
+    csv: &str,
+    same: &[&str],
+) -> PathBuf {
+    let mut other = args.to_vec();
+    other.extend(["--seed", "12345"]);
+    merged_equals_unsharded_unless(tag, bin, (args, &other), csv, same)
+}
+
+/// [`merged_equals_unsharded`] with the arguments of the refused merge given (`other`).
+fn merged_equals_unsharded_unless(
+    tag: &str,
+    bin: &str,
+    (args, other): (&[&str], &[&str]),
     csv: &str,
     same: &[&str],
 ) -> PathBuf {
@@ -81,9 +95,7 @@ fn merged_equals_unsharded(
         "{bin}: merged shards vs unsharded ({same:?})"
     );
     // A merge with other settings than the shards' is refused.
-    let mut other = args.to_vec();
-    other.extend(["--seed", "12345"]);
-    let out = output(bin, &other, &["--out", &s(&dirs[3]), "--merge", &list]);
+    let out = output(bin, other, &["--out", &s(&dirs[3]), "--merge", &list]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("run with other settings"), "{err}");
@@ -228,7 +240,38 @@ fn pareto_shards_merge() {
         ],
     );
     let md = std::fs::read_to_string(dir.join("pareto.md")).unwrap();
-    let skipped: Vec<&str> = md.lines().filter(|l| l.contains("not run: predicted")).collect();
+    let skipped: Vec<&str> = md
+        .lines()
+        .filter(|l| l.contains("not run: predicted"))
+        .collect();
     assert!(!skipped.is_empty(), "the cap skipped no level: {md}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn stability_shards_merge() {
+    // Every column but the time: the errors are deterministic (seeded cases, exact references).
+    let dir = merged_equals_unsharded_unless(
+        "stability",
+        env!("CARGO_BIN_EXE_stability"),
+        (&["--seeds", "1"], &["--seeds", "2"]),
+        "stability.csv",
+        &[
+            "level",
+            "family",
+            "delta",
+            "cases",
+            "max_abs_error",
+            "median_abs_error",
+            "max_rel_error",
+            "median_rel_error",
+            "bound",
+            "max_error_over_bound",
+            "max_certified_width",
+            "certificate_violations",
+            "bound_exceeded",
+        ],
+    );
+    assert!(dir.join("stability.svg").exists());
     std::fs::remove_dir_all(dir).unwrap();
 }
