@@ -112,6 +112,10 @@ enum Command {
         /// Worker threads (default: all cores).
         #[arg(long, default_value_t = 0)]
         threads: usize,
+        /// `--shard I/N`: only the jobs (blocks of poses of a pair and eps) numbered I modulo
+        /// N, raw rows to OUT/crosscheck.rows.csv; `--merge DIR,...`: the report of the shards.
+        #[command(flatten)]
+        shard: verify::shard::Flags,
     },
     /// Certified time of impact (`revdist toi`) against the oracle sampled densely along
     /// random motions (head-on, grazing, rotating, never touching, both moving) over the
@@ -258,6 +262,7 @@ fn main() {
             quick,
             seed,
             threads,
+            shard,
         } => std::process::exit(crosscheck_command(
             (poses, convex_poses, occt_poses),
             eps,
@@ -265,7 +270,7 @@ fn main() {
                 eps: occt_eps,
                 only: occt_only,
             },
-            &out,
+            (&out, &shard),
             quick,
             seed,
             threads,
@@ -300,7 +305,7 @@ fn crosscheck_command(
     (poses, convex_poses, occt_poses): (usize, usize, usize),
     eps: Vec<f64>,
     occt: OcctSweep,
-    out: &std::path::Path,
+    (out, shard): (&std::path::Path, &verify::shard::Flags),
     quick: bool,
     seed: u64,
     threads: usize,
@@ -347,10 +352,12 @@ fn crosscheck_command(
         eps,
         seed,
         threads,
+        shard: shard.shard,
         ..Default::default()
     };
-    let report = match verify::crosscheck::run(&opts) {
-        Ok(r) => r,
+    let report = match sharded_crosscheck(&opts, out, shard) {
+        Ok(Some(r)) => r,
+        Ok(None) => return 0, // a shard: its raw rows are written, the merge reports
         Err(e) => {
             eprintln!("error: {e}");
             return 2;
@@ -363,6 +370,45 @@ fn crosscheck_command(
     }
     println!("report written to {}", out.display());
     i32::from(report.failures() > 0)
+}
+
+/// The cross-check's report: of the whole run, of the shards in `shard.merge` (nothing is
+/// run), or `None` for a shard, whose records go to `out` as raw rows.
+fn sharded_crosscheck(
+    opts: &verify::crosscheck::Options,
+    out: &std::path::Path,
+    shard: &verify::shard::Flags,
+) -> Result<Option<verify::crosscheck::Report>, String> {
+    let pairs = |v: &[(String, String)]| {
+        v.iter()
+            .map(|(a, b)| format!("{a}-{b}"))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    // What every shard must share (the report's provenance, and the pairs).
+    let settings = [
+        ("poses", opts.poses.to_string()),
+        ("convex_poses", opts.convex_poses.to_string()),
+        ("occt_poses", opts.occt_poses.to_string()),
+        ("occt_eps", format!("{:?}", opts.occt_eps)),
+        ("eps", format!("{:?}", opts.eps)),
+        ("seed", opts.seed.to_string()),
+        ("pairs", pairs(&opts.pairs)),
+        ("convex_pairs", pairs(&opts.convex_pairs)),
+        ("occt_pairs", pairs(&opts.occt_pairs)),
+    ];
+    let (records, units, threads, times) = if shard.merge.is_empty() {
+        let r = verify::crosscheck::runner::run_units(opts)?;
+        (r.records, r.units, r.threads, (r.prepare_time, r.wall))
+    } else {
+        (Vec::new(), 0, 0, Default::default())
+    };
+    if shard.is_shard() {
+        std::fs::create_dir_all(out)
+            .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    }
+    let records = shard.finish((out, "crosscheck"), &settings, units, records)?;
+    Ok(records.map(|r| verify::crosscheck::Report::new(r, opts.clone(), threads, times)))
 }
 
 /// A built-in model or a profile file.

@@ -6,7 +6,8 @@
 //! the unsharded run writes. Without either flag a run is unchanged.
 //!
 //! The drivers of `experiments` and `verify crosscheck` share this module; `verify queries`
-//! and `verify toi` split their cases the same way (`I` of `N` by index modulo `N`).
+//! and `verify toi` split their cases by index modulo `N` (cases of one kind each, so
+//! modulo is balanced there) and merge with `verify merge-queries`.
 
 pub mod field;
 pub mod rows;
@@ -26,10 +27,34 @@ pub struct Shard {
 }
 
 impl Shard {
-    /// Whether work unit `unit` is this shard's.
-    pub fn owns(&self, unit: usize) -> bool {
-        unit % self.count == self.index
+    /// The units of `0..units` this shard runs, in increasing order. The units are dealt
+    /// round-robin to the `count` shards in an order shuffled by a fixed hash: every unit
+    /// goes to exactly one shard, the shards' counts differ by one at most, and a periodic
+    /// plan (pair x eps, where every third unit is the slowest eps) does not put all its slow
+    /// units on one shard, as `unit mod N` would.
+    pub fn units(&self, units: usize) -> Vec<usize> {
+        let owner = owners(units, self.count);
+        (0..units).filter(|&u| owner[u] == self.index).collect()
     }
+}
+
+/// The shard of each unit of `0..units` split `count` ways ([`Shard::units`]).
+pub fn owners(units: usize, count: usize) -> Vec<usize> {
+    let mut order: Vec<(u64, usize)> = (0..units).map(|u| (mix(u as u64), u)).collect();
+    order.sort_unstable();
+    let mut owner = vec![0; units];
+    for (k, (_, u)) in order.into_iter().enumerate() {
+        owner[u] = k % count.max(1);
+    }
+    owner
+}
+
+/// SplitMix64's finaliser: a fixed bijective hash of a unit's number (the deal's order).
+fn mix(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 impl fmt::Display for Shard {
@@ -69,9 +94,9 @@ pub fn parse_shard(text: &str) -> Result<Shard, String> {
 /// The flags `--shard I/N` and `--merge DIR...` of a driver (`#[command(flatten)]`).
 #[derive(clap::Args, Debug, Clone, Default)]
 pub struct Flags {
-    /// Run only shard I of N (0 <= I < N): the work units whose number is I modulo N, the same
-    /// seeds as an unsharded run; writes the raw rows to DIR/<name>.rows.csv (tables and
-    /// figures come from --merge)
+    /// Run only shard I of N (0 <= I < N): a fixed 1/N of the work units, with the seeds of
+    /// an unsharded run; writes the raw rows to DIR/<name>.rows.csv (tables and figures come
+    /// from --merge)
     #[arg(long, value_name = "I/N", value_parser = parse_shard, conflicts_with = "merge",
           allow_hyphen_values = true)]
     pub shard: Option<Shard>,
@@ -91,7 +116,7 @@ impl Flags {
     pub fn units(&self, units: usize) -> Vec<usize> {
         match (self.shard, self.merge.is_empty()) {
             (_, false) => Vec::new(),
-            (Some(s), true) => (0..units).filter(|&u| s.owns(u)).collect(),
+            (Some(s), true) => s.units(units),
             (None, true) => (0..units).collect(),
         }
     }
@@ -124,7 +149,8 @@ impl Flags {
         if let Some(shard) = self.shard {
             let path = rows::write(dir, name, settings, (shard, units), &rows)?;
             eprintln!(
-                "shard {shard}: {} of {units} units, raw rows in {} (merge with --merge)",
+                "shard {shard}: {} of {units} units ({} rows), raw rows in {} (merge with --merge)",
+                self.units(units).len(),
                 rows.len(),
                 path.display()
             );

@@ -179,7 +179,7 @@ fn read<R: Record>(dir: &Path, name: &str) -> Result<ShardFile<R>, String> {
 /// The rows of every unit of experiment `name`, read from the shards' directories `dirs`
 /// and returned in unit order (a unit's rows, if it has several, in their order). The shards must have been run with `settings` (the merge's
 /// own, from the same flags), by one commit, as shards `0..N` of one split, each holding
-/// exactly its units (`unit % N == I`), together all `U` units (each with a row at least).
+/// only its units ([`Shard::units`]), together all `U` units (each with a row at least).
 pub fn merge<R: Record>(
     dirs: &[PathBuf],
     name: &str,
@@ -197,6 +197,7 @@ pub fn merge<R: Record>(
         .map(|d| read::<R>(d, name))
         .collect::<Result<Vec<_>, _>>()?;
     let commit = files[0].commit.clone();
+    let owner = super::owners(files[0].units, files[0].shard.count);
     let mut seen = vec![false; files[0].shard.count];
     let mut by_unit: Vec<Vec<R>> = (0..files[0].units).map(|_| Vec::new()).collect();
     for f in files {
@@ -235,7 +236,7 @@ pub fn merge<R: Record>(
             return Err(at(format!("shard {} is given twice", f.shard)));
         }
         for (unit, row) in f.rows {
-            if unit >= by_unit.len() || !f.shard.owns(unit) {
+            if unit >= by_unit.len() || owner[unit] != f.shard.index {
                 return Err(at(format!("unit {unit} is not one of shard {}'s", f.shard)));
             }
             by_unit[unit].push(row);

@@ -61,6 +61,32 @@ fn settings(poses: usize) -> Vec<(&'static str, String)> {
 }
 
 #[test]
+fn every_unit_in_one_shard_balanced_and_not_periodic() {
+    for units in [0, 1, 7, 33, 100] {
+        for count in 1..6 {
+            let mut all: Vec<usize> = (0..count)
+                .flat_map(|index| Shard { index, count }.units(units))
+                .collect();
+            let sizes: Vec<usize> = (0..count)
+                .map(|index| Shard { index, count }.units(units).len())
+                .collect();
+            assert!(sizes.iter().max().unwrap() - sizes.iter().min().unwrap() <= 1);
+            all.sort_unstable();
+            assert_eq!(all, (0..units).collect::<Vec<_>>(), "{units} / {count}");
+        }
+    }
+    // 11 pairs x 3 eps: no shard of 3 gets only one eps (unit mod 3 would).
+    for index in 0..3 {
+        let eps: Vec<usize> = Shard { index, count: 3 }
+            .units(33)
+            .iter()
+            .map(|u| u % 3)
+            .collect();
+        assert!(eps.iter().any(|&e| e != eps[0]), "shard {index}: {eps:?}");
+    }
+}
+
+#[test]
 fn bad_shards_are_clear_errors() {
     for (bad, says) in [
         ("3/2", "need 0 <= I < N"),
@@ -92,6 +118,7 @@ fn two_shards_merge_to_the_unsharded_rows() {
     for (i, d) in dirs.iter().enumerate() {
         let f = flags(&["--shard", &format!("{i}/2")]).unwrap();
         assert_eq!(f.units(UNITS).len(), if i == 0 { 4 } else { 3 });
+        assert_eq!(f.units(UNITS), f.shard.unwrap().units(UNITS));
         let none = f.run((d, "demo"), &settings(5), UNITS, unit).unwrap();
         assert!(none.is_none(), "a shard writes rows, no tables");
     }
@@ -123,9 +150,17 @@ fn two_shards_merge_to_the_unsharded_rows() {
     // A shard whose file lost a row.
     let path = rows::rows_path(&dirs[1], "demo");
     let text = std::fs::read_to_string(&path).unwrap();
-    let cut: Vec<&str> = text.lines().filter(|l| !l.starts_with("3,")).collect();
+    let lost = Shard { index: 1, count: 2 }.units(UNITS)[0];
+    let cut: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with(&format!("{lost},")))
+        .collect();
     std::fs::write(&path, cut.join("\n")).unwrap();
-    assert!(err(&merge, &settings(5)).contains("units [3] of 7 are in no shard's rows"));
+    let e = err(&merge, &settings(5));
+    assert!(
+        e.contains(&format!("units [{lost}] of 7 are in no shard's rows")),
+        "{e}"
+    );
     let e = err(
         &flags(&["--merge", "/nonexistent-shard"]).unwrap(),
         &settings(5),
