@@ -797,9 +797,12 @@ pub fn solid_sample(
     })
 }
 
-/// The jobs `(family, delta, seed)` of a level with `families` families, numbered in this
-/// order (a job's number is its work unit within the level for `--shard`).
-fn jobs(families: usize, cfg: &Config) -> Vec<(usize, Option<i32>, usize)> {
+/// A job: family, perturbation (`None`: delta = 0) and seed.
+type Job = (usize, Option<i32>, usize);
+
+/// The jobs of a level with `families` families, numbered in this order (a job's number is
+/// its work unit within the level for `--shard`).
+fn jobs(families: usize, cfg: &Config) -> Vec<Job> {
     (0..families)
         .flat_map(|fi| {
             cfg.deltas
@@ -821,7 +824,7 @@ fn run_all<F>(
 where
     F: Fn(usize, Option<i32>, usize) -> Result<Sample, Error> + Sync,
 {
-    let jobs: Vec<(usize, (usize, Option<i32>, usize))> = jobs(families, cfg)
+    let jobs: Vec<(usize, Job)> = jobs(families, cfg)
         .into_iter()
         .enumerate()
         .filter(|(k, _)| keep(*k))

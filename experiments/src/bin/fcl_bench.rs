@@ -105,6 +105,9 @@ struct Args {
     shard: experiments::shard::Flags,
 }
 
+/// A pair's profiles and its poses (placed once, for the largest pose count of its eps).
+type PlacedPair = (Arc<Profile>, Arc<Profile>, Vec<Isometry3<f64>>);
+
 /// One row of the table: one work unit (pair, eps) of `--shard`.
 #[derive(Default)]
 struct Row {
@@ -289,8 +292,7 @@ fn run(args: Args) -> DriverResult {
         .flat_map(|(k, (_, pair_eps, _))| pair_eps.iter().map(move |&e| (k, e)))
         .collect();
     // Per pair: its profiles and poses, placed once (fine trees) and reused at every eps.
-    let mut placed: HashMap<usize, (Arc<Profile>, Arc<Profile>, Vec<Isometry3<f64>>)> =
-        HashMap::new();
+    let mut placed: HashMap<usize, PlacedPair> = HashMap::new();
     let rows = args.shard.run(
         (&c.out.dir, "fcl_bench"),
         &settings,
@@ -299,7 +301,7 @@ fn run(args: Args) -> DriverResult {
             let (k, eps) = units[u];
             let ((na, nb), pair_eps, pair_poses) = &plan[k];
             let pair = format!("{na}-{nb}");
-            if !placed.contains_key(&k) {
+            if let std::collections::hash_map::Entry::Vacant(slot) = placed.entry(k) {
                 let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
                 let n_max = pair_eps
                     .iter()
@@ -307,7 +309,7 @@ fn run(args: Args) -> DriverResult {
                     .max()
                     .unwrap_or(0);
                 let p = close_poses(&pa, &pb, n_max, GAPS, pair_seed(seed, &pair), || {})?;
-                placed.insert(k, (pa, pb, p));
+                slot.insert((pa, pb, p));
             }
             let (pa, pb, p) = &placed[&k];
             let n = count_at(eps, *pair_poses);

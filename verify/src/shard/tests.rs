@@ -37,7 +37,7 @@ fn unit(u: usize) -> Result<Demo, String> {
         pair: format!("pawn-cup{u}"),
         eps: 10f64.powi(-(u as i32 % 3) - 3),
         times: vec![1.0 / (u + 3) as f64, f64::NAN, u as f64],
-        best: (u % 2 == 0).then_some("OBBRSS"),
+        best: u.is_multiple_of(2).then_some("OBBRSS"),
     })
 }
 
@@ -98,10 +98,7 @@ fn bad_shards_are_clear_errors() {
     ] {
         let e = bad.parse::<Shard>().unwrap_err();
         assert!(e.contains(says), "{bad}: {e}");
-        let e = flags(&["--shard", bad])
-            .err()
-            .expect("an error")
-            .to_string();
+        let e = flags(&["--shard", bad]).expect_err("an error").to_string();
         assert!(e.contains("--shard") && e.contains(says), "{bad}: {e}");
     }
     assert_eq!("1/3".parse::<Shard>(), Ok(Shard { index: 1, count: 3 }));
