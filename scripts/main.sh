@@ -93,7 +93,7 @@ short bvh_tables   $bin/bvh_tables --out "$out" "${paper[@]}"                  #
 short query_times  $bin/accuracy_time --out "$out" "${query_poses[@]}"         # where a query spends its time
 short tails        $bin/tails --out "$out"                                      # tail of single-query times: 2,000 seeded queries, cold
 long fcl_bench   "" $bin/fcl_bench "${fcl_poses[@]}"                           # speed ratios vs FCL on close poses
-short peers        $bin/peers --out "$out" "${paper[@]}"                       # FCL, coal, parry3d in one run; convex solids vs exact GJK
+long peers       "" $bin/peers "${paper[@]}"                                   # FCL, coal, parry3d in one run; convex solids vs exact GJK
 short toi_bench    $bin/toi_bench --out "$out" "${toi_motions[@]}"           # time of impact vs FCL continuous collision
 long motion      "" $bin/motion "${paper[@]}"                                  # Figure 12: 15 pairs in continuous motion
 long deforming   "" $bin/deforming "${paper[@]}"                               # Figure 8: static models vs M_t

@@ -275,3 +275,56 @@ fn stability_shards_merge() {
     assert!(dir.join("stability.svg").exists());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn peers_shards_merge_both_tables() {
+    // The mesh table through the shared helper, then the convex table of the same runs'
+    // settings (its own raw rows, peers_convex.rows.csv, split alike).
+    let args = [
+        "--poses",
+        "3",
+        "--parry-poses",
+        "1",
+        "--eps",
+        "1e-3",
+        "--pairs",
+        "pawn-cup,torus-torus,cup-bottle",
+    ];
+    let bin = env!("CARGO_BIN_EXE_peers");
+    let dir = merged_equals_unsharded(
+        "peers",
+        bin,
+        &args,
+        "peers.csv",
+        &[
+            "pair",
+            "eps",
+            "poses",
+            "parry_poses",
+            "triangles",
+            "h_sum",
+            "rev_bytes",
+            "fcl_obbrss_bytes",
+            "parry_bytes",
+            "rev_max_width",
+            "violations",
+            "coal_status",
+        ],
+    );
+    let whole = temp("peers-convex-whole");
+    run(bin, &args, &["--out", whole.to_str().unwrap()]);
+    let convex = [
+        "pair",
+        "poses",
+        "parry_max_excess",
+        "rev_max_width",
+        "violations",
+    ];
+    let rows = columns(&dir.join("peers_convex.csv"), &convex);
+    assert_eq!(rows.len(), 10);
+    assert_eq!(rows, columns(&whole.join("peers_convex.csv"), &convex));
+    assert!(dir.join("peers.svg").exists());
+    for d in [dir, whole] {
+        std::fs::remove_dir_all(d).unwrap();
+    }
+}

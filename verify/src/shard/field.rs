@@ -4,8 +4,8 @@
 //! its own values.
 //!
 //! A cell never holds `,` (the CSV's separator), a list never an item with `;` (the list's
-//! separator), a pair never a part with `:`: texts escape these (and `%`, `~`, quotes and
-//! line breaks) as `%XX`. `~` is "none" of an `Option`.
+//! separator), a pair never a part with `:`: texts escape these (and `%`, `~`, `!`, quotes
+//! and line breaks) as `%XX`. `~` is "none" of an `Option`, `!` opens the error of a `Result`.
 
 use std::sync::Mutex;
 use std::time::Duration;
@@ -28,7 +28,10 @@ pub trait Item: Field {}
 const NONE: &str = "~";
 
 /// Characters a text cell escapes as `%XX`.
-const ESCAPED: [char; 9] = ['%', ',', ';', ':', '~', '"', '\n', '\r', '\''];
+const ESCAPED: [char; 10] = ['%', ',', ';', ':', '~', '!', '"', '\n', '\r', '\''];
+
+/// What opens the text of a `Result`'s error (a scalar's text never starts with it).
+const ERR: char = '!';
 
 /// `s` with the separators escaped.
 fn escape(s: &str) -> String {
@@ -168,6 +171,23 @@ impl<T: Scalar> Field for Option<T> {
 }
 impl<T: Scalar> Item for Option<T> {}
 
+/// A value, or why there is none (a peer that did not run): the value's text, or `!` and
+/// the reason.
+impl<T: Scalar> Field for Result<T, String> {
+    fn text(&self) -> String {
+        match self {
+            Ok(v) => v.text(),
+            Err(e) => format!("{ERR}{}", escape(e)),
+        }
+    }
+    fn parse(cell: &str) -> Result<Self, String> {
+        match cell.strip_prefix(ERR) {
+            Some(e) => unescape(e).map(Err),
+            None => T::parse(cell).map(Ok),
+        }
+    }
+}
+
 impl<A: Scalar, B: Scalar> Field for (A, B) {
     fn text(&self) -> String {
         format!("{}:{}", self.0.text(), self.1.text())
@@ -231,6 +251,11 @@ mod tests {
         round(Vec::<f64>::new());
         round(vec![Some(1usize), None]);
         round(Duration::new(3, 141_592_653));
+        round(Ok::<f64, String>(2.5));
+        round(Err::<f64, String>(
+            "coal missing: run scripts/deps.sh!".into(),
+        ));
+        round(Ok::<String, String>("!not an error".into()));
         let s: &'static str = Field::parse("pawn_ff").unwrap();
         let t: &'static str = Field::parse("pawn_ff").unwrap();
         assert!(std::ptr::eq(s, t), "interned once");
