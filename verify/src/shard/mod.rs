@@ -136,9 +136,10 @@ impl Flags {
     }
 
     /// The whole campaign's rows, in unit order, once the run computed `rows` (`(unit,
-    /// row)` for [`Self::units`], one or more rows per unit, in order): an unsharded run's own; `None` for a shard, which writes
-    /// its rows to `dir` instead; for a merge, the rows of the shards' directories.
-    /// `name` is the experiment (its file's name), `settings` what every shard must share.
+    /// row)` for [`Self::units`], one or more rows per unit, in order): an unsharded run's
+    /// own; `None` for a shard, which writes its rows to `dir` instead; for a merge, the rows
+    /// of the shards' directories. `name` is the experiment (its file's name), `settings`
+    /// what every shard must share.
     pub fn finish<R: Record>(
         &self,
         (dir, name): (&Path, &str),
