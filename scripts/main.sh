@@ -5,26 +5,54 @@
 #   bash scripts/main.sh           # default scale: about 7 minutes of runs on 2 cores (15 at most)
 #   bash scripts/main.sh --paper   # paper scale (50,000 motion frames, 1,000 poses per pair, ...): hours
 #
+# Spread over a job array (README, "Spreading the paper run over a job array"): job I of N runs
+#   bash scripts/main.sh --paper --shard I/N   # only the long steps, shard I of N: figures/shards/I-of-N/
+# and when all N are done,
+#   bash scripts/main.sh --paper --merge N     # the short steps, and the long ones merged from the shards
+#
 # Every CSV starts with '# key: value' provenance lines (machine, git commit, parameters).
 # Timing steps run one query at a time; steps that only check or sample use all cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 paper=()
-case "${1:-}" in
-    "") ;;
-    --paper) paper=(--paper) ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
-    *) echo "error: unknown argument '$1' (try --help)" >&2; exit 2 ;;
-esac
+shard=""  # I/N: run only the long steps' shard I of N
+merge=""  # N: merge the long steps from N shards
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --paper) paper=(--paper) ;;
+        --shard|--merge)
+            [ $# -ge 2 ] || { echo "error: $1 needs a value (try --help)" >&2; exit 2; }
+            if [ "$1" = --shard ]; then shard=$2; else merge=$2; fi
+            shift ;;
+        -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+        *) echo "error: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+    esac
+    shift
+done
+if [ -n "$shard" ] && [ -n "$merge" ]; then
+    echo "error: give --shard I/N (one job) or --merge N (after all jobs), not both" >&2; exit 2
+fi
+if [ -n "$shard" ] && ! { [[ $shard =~ ^([0-9]+)/([0-9]+)$ ]] && (( 10#${BASH_REMATCH[1]} < 10#${BASH_REMATCH[2]} )); }; then
+    echo "error: --shard '$shard': need I/N with whole numbers 0 <= I < N" >&2; exit 2
+fi
+if [ -n "$merge" ] && ! [[ $merge =~ ^[1-9][0-9]*$ ]]; then
+    echo "error: --merge '$merge': need the number of shards N (a positive whole number)" >&2; exit 2
+fi
 
 scripts/deps.sh
 cargo build --release --workspace
 out=figures
-mkdir -p "$out"
-bin=target/release
-timing="$out/main_timing.txt"
-echo "# scripts/main.sh ${paper[*]:-} on $(date -u +%Y-%m-%dT%H:%M:%SZ), commit $(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)" > "$timing"
+bin=${CARGO_TARGET_DIR:-target}/release
+shards="$out/shards"  # shard I of N writes its raw rows to $shards/I-of-N/
+if [ -n "$shard" ]; then
+    here="$shards/${shard%/*}-of-${shard#*/}"
+else
+    here=$out
+fi
+mkdir -p "$here"
+timing="$here/main_timing.txt"
+echo "# scripts/main.sh ${paper[*]:-} ${shard:+--shard $shard}${merge:+--merge $merge} on $(date -u +%Y-%m-%dT%H:%M:%SZ), commit $(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)" > "$timing"
 
 step() {  # step NAME COMMAND...: run, time, record
     local name=$1; shift
@@ -32,6 +60,23 @@ step() {  # step NAME COMMAND...: run, time, record
     local t0=$SECONDS
     "$@"
     echo "$name $((SECONDS - t0)) s" | tee -a "$timing" >&2
+}
+
+short() {  # short NAME COMMAND...: a step --shard does not split: left to the merge job
+    [ -n "$shard" ] || step "$@"
+}
+
+long() {  # long NAME SUBDIR COMMAND...: a step --shard splits; its --out is $out[/SUBDIR]
+    local name=$1 sub=${2:+/$2}; shift 2
+    if [ -n "$shard" ]; then
+        step "$name" "$@" --out "$here$sub" --shard "$shard"
+    elif [ -n "$merge" ]; then
+        local dirs=() i
+        for ((i = 0; i < merge; i++)); do dirs+=("$shards/$i-of-$merge$sub"); done
+        step "$name" "$@" --out "$out$sub" --merge "$(IFS=,; echo "${dirs[*]}")"
+    else
+        step "$name" "$@" --out "$out$sub"
+    fi
 }
 
 if [ ${#paper[@]} -eq 0 ]; then
@@ -42,21 +87,25 @@ else
     toi_motions=(--motions 30)
 fi
 
-step profiles     $bin/revdist figures --out "$out"                          # model profiles, M_t frames
-step convergence  $bin/convergence --out "$out" "${paper[@]}"                 # biarcs n^-3 vs chords n^-2
-step bvh_tables   $bin/bvh_tables --out "$out" "${paper[@]}"                  # Tables 1-2, Figure 9
-step query_times  $bin/accuracy_time --out "$out" "${query_poses[@]}"         # where a query spends its time
-step tails        $bin/tails --out "$out"                                      # tail of single-query times: 2,000 seeded queries, cold
-step fcl_bench    $bin/fcl_bench --out "$out" "${fcl_poses[@]}"               # speed ratios vs FCL on close poses
-step peers        $bin/peers --out "$out" "${paper[@]}"                       # FCL, coal, parry3d in one run; convex solids vs exact GJK
-step toi_bench    $bin/toi_bench --out "$out" "${toi_motions[@]}"           # time of impact vs FCL continuous collision
-step motion       $bin/motion --out "$out" "${paper[@]}"                      # Figure 12: 15 pairs in continuous motion
-step deforming    $bin/deforming --out "$out" "${paper[@]}"                   # Figure 8: static models vs M_t
-step pareto       $bin/pareto --out "$out" "${paper[@]}"                      # accuracy vs time, build, memory
-step stability    $bin/stability --out "$out" "${paper[@]}"                   # degenerate families, exact references
-step crosscheck   $bin/verify crosscheck --out "$out/crosscheck" "${cross[@]}" --occt-poses 0  # vs FCL, CGAL, libccd
-step occt         $bin/verify crosscheck --out "$out/crosscheck-occt" --poses 0 --convex-poses 0 "${occt[@]}"  # vs OpenCASCADE on the true surfaces
-step kernels      $bin/patch_kernels --out "$out"                            # leaf kernels near contact
-step scenes       bash -c 'for f in experiments/scenes/*.toml; do '"$bin"'/revdist-scene "$f" --out '"$out"'/scenes > /dev/null || exit 1; done'  # example scenes: CSV + cost summaries
+short profiles     $bin/revdist figures --out "$out"                          # model profiles, M_t frames
+short convergence  $bin/convergence --out "$out" "${paper[@]}"                 # biarcs n^-3 vs chords n^-2
+short bvh_tables   $bin/bvh_tables --out "$out" "${paper[@]}"                  # Tables 1-2, Figure 9
+short query_times  $bin/accuracy_time --out "$out" "${query_poses[@]}"         # where a query spends its time
+short tails        $bin/tails --out "$out"                                      # tail of single-query times: 2,000 seeded queries, cold
+long fcl_bench   "" $bin/fcl_bench "${fcl_poses[@]}"                           # speed ratios vs FCL on close poses
+long peers       "" $bin/peers "${paper[@]}"                                   # FCL, coal, parry3d in one run; convex solids vs exact GJK
+short toi_bench    $bin/toi_bench --out "$out" "${toi_motions[@]}"           # time of impact vs FCL continuous collision
+long motion      "" $bin/motion "${paper[@]}"                                  # Figure 12: 15 pairs in continuous motion
+long deforming   "" $bin/deforming "${paper[@]}"                               # Figure 8: static models vs M_t
+long pareto      "" $bin/pareto "${paper[@]}"                                  # accuracy vs time, build, memory
+long stability   "" $bin/stability "${paper[@]}"                               # degenerate families, exact references
+long crosscheck  crosscheck $bin/verify crosscheck "${cross[@]}" --occt-poses 0  # vs FCL, CGAL, libccd
+long occt        crosscheck-occt $bin/verify crosscheck --poses 0 --convex-poses 0 "${occt[@]}"  # vs OpenCASCADE on the true surfaces
+short kernels      $bin/patch_kernels --out "$out"                            # leaf kernels near contact
+short scenes       bash -c 'for f in experiments/scenes/*.toml; do '"$bin"'/revdist-scene "$f" --out '"$out"'/scenes > /dev/null || exit 1; done'  # example scenes: CSV + cost summaries
 echo "total $SECONDS s" | tee -a "$timing" >&2
-echo "figures and tables written to $out/ (step times in $timing)"
+if [ -n "$shard" ]; then
+    echo "shard $shard of the long steps written to $here/ (merge with: bash scripts/main.sh ${paper[*]:-}${paper[*]:+ }--merge ${shard#*/})"
+else
+    echo "figures and tables written to $out/ (step times in $timing)"
+fi

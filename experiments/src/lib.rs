@@ -12,6 +12,10 @@ pub mod rng;
 /// Provenance lines of every CSV (lives in `verify`, which writes reports too).
 pub use verify::provenance;
 pub mod shapes;
+/// `--shard I/N` and `--merge DIR...` of the long drivers (lives in `verify`, whose
+/// `crosscheck` has them too).
+pub use verify::shard;
+pub use verify::shard_record;
 pub mod stability;
 pub mod stats;
 pub mod table;

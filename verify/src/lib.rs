@@ -9,4 +9,5 @@ pub mod oracle;
 pub mod provenance;
 pub mod queries;
 pub mod random_profiles;
+pub mod shard;
 pub mod toi;

@@ -69,7 +69,7 @@ enum Command {
         /// Run one shard I/N of the campaign (cases whose index is I modulo N; the same
         /// --seed and --count in every shard); merge the shards' --out directories with
         /// `verify merge-queries`.
-        #[arg(long, value_parser = parse_shard)]
+        #[arg(long, value_parser = parse_shard, allow_hyphen_values = true)]
         shard: Option<(usize, usize)>,
     },
     /// Adds up the shards of one `verify queries` campaign (their --out directories, each
@@ -112,6 +112,10 @@ enum Command {
         /// Worker threads (default: all cores).
         #[arg(long, default_value_t = 0)]
         threads: usize,
+        /// `--shard I/N`: only the jobs (blocks of poses of a pair and eps) numbered I modulo
+        /// N, raw rows to OUT/crosscheck.rows.csv; `--merge DIR,...`: the report of the shards.
+        #[command(flatten)]
+        shard: verify::shard::Flags,
     },
     /// Certified time of impact (`revdist toi`) against the oracle sampled densely along
     /// random motions (head-on, grazing, rotating, never touching, both moving) over the
@@ -128,7 +132,7 @@ enum Command {
         #[arg(long, default_value_t = 0)]
         threads: usize,
         /// Run one shard I/N (cases whose index is I modulo N).
-        #[arg(long, value_parser = parse_shard)]
+        #[arg(long, value_parser = parse_shard, allow_hyphen_values = true)]
         shard: Option<(usize, usize)>,
     },
     /// One query checked against the oracle: solids as profile files or by any shape name
@@ -259,6 +263,7 @@ fn main() {
             quick,
             seed,
             threads,
+            shard,
         } => std::process::exit(crosscheck_command(
             (poses, convex_poses, occt_poses),
             eps,
@@ -266,7 +271,7 @@ fn main() {
                 eps: occt_eps,
                 only: occt_only,
             },
-            &out,
+            (&out, &shard),
             quick,
             seed,
             threads,
@@ -301,7 +306,7 @@ fn crosscheck_command(
     (poses, convex_poses, occt_poses): (usize, usize, usize),
     eps: Vec<f64>,
     occt: OcctSweep,
-    out: &std::path::Path,
+    (out, shard): (&std::path::Path, &verify::shard::Flags),
     quick: bool,
     seed: u64,
     threads: usize,
@@ -348,10 +353,12 @@ fn crosscheck_command(
         eps,
         seed,
         threads,
+        shard: shard.shard,
         ..Default::default()
     };
-    let report = match verify::crosscheck::run(&opts) {
-        Ok(r) => r,
+    let report = match sharded_crosscheck(&opts, out, shard) {
+        Ok(Some(r)) => r,
+        Ok(None) => return 0, // a shard: its raw rows are written, the merge reports
         Err(e) => {
             eprintln!("error: {e}");
             return 2;
@@ -364,6 +371,45 @@ fn crosscheck_command(
     }
     println!("report written to {}", out.display());
     i32::from(report.failures() > 0)
+}
+
+/// The cross-check's report: of the whole run, of the shards in `shard.merge` (nothing is
+/// run), or `None` for a shard, whose records go to `out` as raw rows.
+fn sharded_crosscheck(
+    opts: &verify::crosscheck::Options,
+    out: &std::path::Path,
+    shard: &verify::shard::Flags,
+) -> Result<Option<verify::crosscheck::Report>, String> {
+    let pairs = |v: &[(String, String)]| {
+        v.iter()
+            .map(|(a, b)| format!("{a}-{b}"))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    // What every shard must share (the report's provenance, and the pairs).
+    let settings = [
+        ("poses", opts.poses.to_string()),
+        ("convex_poses", opts.convex_poses.to_string()),
+        ("occt_poses", opts.occt_poses.to_string()),
+        ("occt_eps", format!("{:?}", opts.occt_eps)),
+        ("eps", format!("{:?}", opts.eps)),
+        ("seed", opts.seed.to_string()),
+        ("pairs", pairs(&opts.pairs)),
+        ("convex_pairs", pairs(&opts.convex_pairs)),
+        ("occt_pairs", pairs(&opts.occt_pairs)),
+    ];
+    let (records, units, threads, times) = if shard.merge.is_empty() {
+        let r = verify::crosscheck::runner::run_units(opts)?;
+        (r.records, r.units, r.threads, (r.prepare_time, r.wall))
+    } else {
+        (Vec::new(), 0, 0, Default::default())
+    };
+    if shard.is_shard() {
+        std::fs::create_dir_all(out)
+            .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    }
+    let records = shard.finish((out, "crosscheck"), &settings, units, records)?;
+    Ok(records.map(|r| verify::crosscheck::Report::new(r, opts.clone(), threads, times)))
 }
 
 /// A shape by any name the campaigns print (see `verify::queries::pool_shape`) or a profile
@@ -480,19 +526,8 @@ fn oracle_command(
     Ok(())
 }
 
-/// `I/N` with `I < N`, for `--shard`.
+/// `I/N` with `I < N`, for `--shard` ([`verify::shard::Shard`]).
 fn parse_shard(text: &str) -> Result<(usize, usize), String> {
-    let (i, n) = text
-        .split_once('/')
-        .ok_or_else(|| format!("'{text}' is not of the form I/N (e.g. 0/4)"))?;
-    let parse = |v: &str| {
-        v.trim()
-            .parse::<usize>()
-            .map_err(|_| format!("'{text}': '{v}' is not a whole number"))
-    };
-    let (i, n) = (parse(i)?, parse(n)?);
-    if n == 0 || i >= n {
-        return Err(format!("'{text}': need 0 <= I < N"));
-    }
-    Ok((i, n))
+    let s: verify::shard::Shard = text.parse()?;
+    Ok((s.index, s.count))
 }

@@ -71,6 +71,8 @@ struct Args {
     paper: Paper,
     #[command(flatten)]
     seed: Seed,
+    #[command(flatten)]
+    shard: experiments::shard::Flags,
 }
 
 /// Per static model and eps: sums over frames.
@@ -88,6 +90,20 @@ struct Row {
     gaps: Vec<f64>,
     violations: usize,
 }
+
+experiments::shard_record!(Row {
+    model,
+    eps,
+    frames,
+    rev_build_us,
+    rev_query_us,
+    fcl_mesh_us,
+    fcl_bvh_us,
+    fcl_query_us,
+    triangles,
+    gaps,
+    violations,
+});
 
 impl Row {
     fn rev_frame(&self) -> f64 {
@@ -120,27 +136,35 @@ fn run(args: Args) -> DriverResult {
     ));
     let seed = args.seed.or(SEED);
     let started = Instant::now();
+    let settings = vec![
+        ("frames", frames.0.to_string()),
+        ("frames_eps_below_5e-5", frames.1.to_string()),
+        ("eps", format!("{eps_list:?}")),
+        (
+            "gaps",
+            format!("{GAPS:?} log-sinusoidal, two periods per cycle"),
+        ),
+        (
+            "revdist",
+            "default tolerance, warm start from the previous frame".into(),
+        ),
+        (
+            "fcl",
+            "certified tessellation (balanced) + OBBRSS build from scratch per frame".into(),
+        ),
+        ("seed", format!("{seed:#x}")),
+    ];
     let prov = Provenance::collect(
         "deforming (paper Figure 8: static models vs M_t, rebuild included)",
-        &[
-            ("frames", frames.0.to_string()),
-            ("frames_eps_below_5e-5", frames.1.to_string()),
-            ("eps", format!("{eps_list:?}")),
-            (
-                "gaps",
-                format!("{GAPS:?} log-sinusoidal, two periods per cycle"),
-            ),
-            (
-                "revdist",
-                "default tolerance, warm start from the previous frame".into(),
-            ),
-            (
-                "fcl",
-                "certified tessellation (balanced) + OBBRSS build from scratch per frame".into(),
-            ),
-            ("seed", format!("{seed:#x}")),
-        ],
+        &settings
+            .iter()
+            .cloned()
+            .chain(args.shard.provenance())
+            .collect::<Vec<_>>(),
     );
+    // The work units: one per eps (the frames of an eps share M_t's rebuild and the warm
+    // starts); this run's.
+    let mine: Vec<usize> = args.shard.units(eps_list.len());
     let statics: Vec<Arc<Profile>> = PAPER_MODELS
         .iter()
         .map(|m| revdist::models::model(m).map(Arc::new))
@@ -148,8 +172,12 @@ fn run(args: Args) -> DriverResult {
     let frames_at = |eps: f64| count_at(eps, frames);
 
     // Placement, before any timing: per static model a direction and rotation, per frame a pose.
-    let max_frames = eps_list.iter().map(|&e| frames_at(e)).max().unwrap_or(0);
-    let total: usize = eps_list.iter().map(|&e| frames_at(e)).sum();
+    let max_frames = mine
+        .iter()
+        .map(|&e| frames_at(eps_list[e]))
+        .max()
+        .unwrap_or(0);
+    let total: usize = mine.iter().map(|&e| frames_at(eps_list[e])).sum();
     let bar = progress::bar(
         (PAPER_MODELS.len() * max_frames + total) as u64,
         "deforming",
@@ -171,10 +199,11 @@ fn run(args: Args) -> DriverResult {
             ))
         })
         .collect::<Result<_, Box<dyn std::error::Error>>>()?;
-    let mut placement: Vec<Vec<Vec<Isometry3<f64>>>> = Vec::new(); // [eps][model][frame]
+    // Per unit of this run: [model][frame].
+    let mut placement: Vec<Vec<Vec<Isometry3<f64>>>> = Vec::new();
     let mut gaps: Vec<Vec<Vec<f64>>> = Vec::new();
-    for &eps in &eps_list {
-        let n = frames_at(eps);
+    for &e in &mine {
+        let n = frames_at(eps_list[e]);
         let mut per_model = vec![Vec::with_capacity(n); statics.len()];
         let mut per_gap = vec![Vec::with_capacity(n); statics.len()];
         for k in 0..n {
@@ -200,7 +229,8 @@ fn run(args: Args) -> DriverResult {
     }
 
     let mut rows = Vec::new();
-    for (ei, &eps) in eps_list.iter().enumerate() {
+    for (ei, &unit) in mine.iter().enumerate() {
+        let eps = eps_list[unit];
         let n = frames_at(eps);
         // Static structures (not timed: they are built once per run).
         let static_solids: Vec<Solid> = statics
@@ -268,9 +298,18 @@ fn run(args: Args) -> DriverResult {
             }
             bar.inc(1);
         }
-        rows.extend(eps_rows);
+        rows.extend(eps_rows.into_iter().map(|r| (unit, r)));
     }
     bar.finish_and_clear();
+    let Some(rows) = args.shard.finish(
+        (&args.out.dir, "deforming"),
+        &settings,
+        eps_list.len(),
+        rows,
+    )?
+    else {
+        return Ok(()); // a shard: its raw rows are written
+    };
     let out = &args.out.dir;
     let csv = prov.csv_preamble() + &frame_table().csv_text(&rows);
     std::fs::write(out.join("deforming.csv"), csv)?;

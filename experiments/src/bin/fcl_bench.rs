@@ -55,6 +55,7 @@ use nalgebra::Isometry3;
 use revdist::biarc::BiarcTree;
 use revdist::profile::Profile;
 use revdist::query::{distance, QueryOptions, Tolerance};
+use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -100,9 +101,14 @@ struct Args {
     /// Poses per pair at eps < 5e-5, the first of the same sequence [default: 100; --paper: 1000]
     #[arg(long = "poses-1e-5", value_name = "N", value_parser = positive_count)]
     poses_fine: Option<usize>,
+    #[command(flatten)]
+    shard: experiments::shard::Flags,
 }
 
-/// One row of the table.
+/// A pair's profiles and its poses (placed once, for the largest pose count of its eps).
+type PlacedPair = (Arc<Profile>, Arc<Profile>, Vec<Isometry3<f64>>);
+
+/// One row of the table: one work unit (pair, eps) of `--shard`.
 #[derive(Default)]
 struct Row {
     pair: String,
@@ -137,6 +143,35 @@ struct Row {
     max_width: f64,
     violations: usize,
 }
+
+experiments::shard_record!(Row {
+    pair,
+    eps,
+    poses,
+    rev_trees,
+    rev_exact,
+    fcl,
+    rev_trees_warm,
+    fcl_obbrss_warm,
+    fcl_rss_warm,
+    rev_trees_blocked,
+    fcl_obbrss_blocked,
+    fcl_rss_blocked,
+    best_obbrss,
+    best_rss,
+    tris,
+    h_sum,
+    rev_build_ms,
+    mesh_ms,
+    obbrss_build_ms,
+    rss_build_ms,
+    rev_bytes,
+    rev_tree_bytes,
+    obbrss_bytes,
+    rss_bytes,
+    max_width,
+    violations,
+});
 
 const LAYOUT_NAMES: [&str; 2] = ["balanced", "capped"];
 
@@ -237,21 +272,48 @@ fn run(args: Args) -> DriverResult {
     }
     let seed = c.seed.or(CLOSE_SEED);
     let started = Instant::now();
-    let mut rows = Vec::new();
-    for ((na, nb), pair_eps, pair_poses) in &plan {
-        let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
-        // Poses placed once per pair (fine trees), reused at every eps.
-        let n_max = pair_eps
-            .iter()
-            .map(|&e| count_at(e, *pair_poses))
-            .max()
-            .unwrap_or(0);
-        let pair = format!("{na}-{nb}");
-        let placed = close_poses(&pa, &pb, n_max, GAPS, pair_seed(seed, &pair), || {})?;
-        for &eps in pair_eps {
+    let settings = vec![
+        ("poses", poses.0.to_string()),
+        ("poses_eps_below_5e-5", poses.1.to_string()),
+        ("eps", format!("{eps_list:?}")),
+        (
+            "pairs",
+            plan.iter()
+                .map(|((a, b), e, (n, n_fine))| format!("{a}-{b} (eps {e:?}, poses {n}/{n_fine})"))
+                .collect::<Vec<_>>()
+                .join(" "),
+        ),
+        ("seed", format!("{seed:#x}")),
+    ];
+    // The work units, in the order of the table: (index into the plan, eps).
+    let units: Vec<(usize, f64)> = plan
+        .iter()
+        .enumerate()
+        .flat_map(|(k, (_, pair_eps, _))| pair_eps.iter().map(move |&e| (k, e)))
+        .collect();
+    // Per pair: its profiles and poses, placed once (fine trees) and reused at every eps.
+    let mut placed: HashMap<usize, PlacedPair> = HashMap::new();
+    let rows = args.shard.run(
+        (&c.out.dir, "fcl_bench"),
+        &settings,
+        units.len(),
+        |u| -> Result<Row, Box<dyn std::error::Error>> {
+            let (k, eps) = units[u];
+            let ((na, nb), pair_eps, pair_poses) = &plan[k];
+            let pair = format!("{na}-{nb}");
+            if let std::collections::hash_map::Entry::Vacant(slot) = placed.entry(k) {
+                let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
+                let n_max = pair_eps
+                    .iter()
+                    .map(|&e| count_at(e, *pair_poses))
+                    .max()
+                    .unwrap_or(0);
+                let p = close_poses(&pa, &pb, n_max, GAPS, pair_seed(seed, &pair), || {})?;
+                slot.insert((pa, pb, p));
+            }
+            let (pa, pb, p) = &placed[&k];
             let n = count_at(eps, *pair_poses);
-            rows.push(bench_row(&pair, (&pa, &pb), eps, &placed[..n])?);
-            let r = rows.last().expect("row");
+            let r = bench_row(&pair, (pa, pb), eps, &p[..n])?;
             eprintln!(
                 "{pair} eps {eps:.0e}: revdist {:.1} us, FCL {} {:.1} us ({}), ratio {:.2} [{:.0} s]",
                 r.rev_trees.0,
@@ -261,24 +323,19 @@ fn run(args: Args) -> DriverResult {
                 r.ratio(),
                 started.elapsed().as_secs_f64()
             );
-        }
-    }
+            Ok(r)
+        },
+    )?;
+    let Some(rows) = rows else {
+        return Ok(()); // a shard: its raw rows are written
+    };
     let prov = experiments::provenance::Provenance::collect(
         "fcl_bench (revdist vs FCL at equal accuracy)",
-        &[
-            ("poses", poses.0.to_string()),
-            ("poses_eps_below_5e-5", poses.1.to_string()),
-            ("eps", format!("{eps_list:?}")),
-            (
-                "pairs",
-                plan.iter()
-                    .map(|((a, b), e, (n, n_fine))| {
-                        format!("{a}-{b} (eps {e:?}, poses {n}/{n_fine})")
-                    })
-                    .collect::<Vec<_>>()
-                    .join(" "),
-            ),
-        ],
+        &settings
+            .iter()
+            .cloned()
+            .chain(args.shard.provenance())
+            .collect::<Vec<_>>(),
     );
     let out = &c.out.dir;
     let csv = prov.csv_preamble() + &csv_table().csv_text(&rows);

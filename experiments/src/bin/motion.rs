@@ -78,6 +78,8 @@ struct Args {
     paper: Paper,
     #[command(flatten)]
     seed: Seed,
+    #[command(flatten)]
+    shard: experiments::shard::Flags,
 }
 
 /// FCL's structures of one shape at one eps: both layouts' certified meshes with their
@@ -117,9 +119,11 @@ struct Row {
     pair: String,
     eps: f64,
     frames: usize,
-    rev_us: Vec<f64>,
-    /// Per FCL method (layout `m / 2`, BV `m % 2`: [`method_name`]): query times.
-    fcl_us: Vec<Vec<f64>>,
+    /// revdist's query times: (mean, median).
+    rev: (f64, f64),
+    /// Per FCL method (layout `m / 2`, BV `m % 2`: [`method_name`]): query times (mean,
+    /// median).
+    fcl: Vec<(f64, f64)>,
     /// Blocked: revdist alone over the whole motion (warm starts), then the faster FCL
     /// method alone: mean query times.
     rev_blocked_mean: f64,
@@ -134,21 +138,37 @@ struct Row {
     violations: usize,
 }
 
+experiments::shard_record!(Row {
+    pair,
+    eps,
+    frames,
+    rev,
+    fcl,
+    rev_blocked_mean,
+    fcl_blocked_mean,
+    best,
+    triangles,
+    node_pairs,
+    exact_leaves,
+    min_gap,
+    violations,
+});
+
 impl Row {
     fn fcl_mean_of(&self, bv: usize, layout: usize) -> String {
-        self.fcl_us
+        self.fcl
             .get(2 * layout + bv)
-            .map(|v| format!("{:.2}", mean(v)))
+            .map(|v| format!("{:.2}", v.0))
             .unwrap_or_default()
     }
     fn fcl_mean(&self) -> f64 {
-        mean(&self.fcl_us[self.best])
+        self.fcl[self.best].0
     }
     fn fcl_median(&self) -> f64 {
-        median(&self.fcl_us[self.best])
+        self.fcl[self.best].1
     }
     fn ratio(&self) -> f64 {
-        self.fcl_mean() / mean(&self.rev_us)
+        self.fcl_mean() / self.rev.0
     }
     fn blocked_ratio(&self) -> f64 {
         self.fcl_blocked_mean / self.rev_blocked_mean
@@ -177,28 +197,48 @@ fn run(args: Args) -> DriverResult {
     let frames_at = |eps: f64| count_at(eps, frames);
     let keys = (KEYS_PER_1000_FRAMES * frames.0 / 1000).max(4);
     let periods = (GAP_PERIODS_PER_1000_FRAMES * frames.0 as f64 / 1000.0).max(1.0);
+    let settings = vec![
+        ("frames", frames.0.to_string()),
+        ("frames_eps_below_5e-5", frames.1.to_string()),
+        ("eps", format!("{eps_list:?}")),
+        ("gaps", format!("{GAPS:?}")),
+        ("keyframes", keys.to_string()),
+        ("gap_periods", format!("{periods}")),
+        (
+            "revdist",
+            "default tolerance, warm start (distance_cached)".into(),
+        ),
+        (
+            "fcl",
+            "OBBRSS and RSS on certified meshes, two layouts; ratio vs the faster".into(),
+        ),
+        ("seed", format!("{seed:#x}")),
+        (
+            "pairs",
+            pairs
+                .iter()
+                .map(|(a, b)| format!("{a}-{b}"))
+                .collect::<Vec<_>>()
+                .join(","),
+        ),
+    ];
     let prov = Provenance::collect(
         "motion (paper Figure 12: 15 pairs in continuous motion)",
-        &[
-            ("frames", frames.0.to_string()),
-            ("frames_eps_below_5e-5", frames.1.to_string()),
-            ("eps", format!("{eps_list:?}")),
-            ("gaps", format!("{GAPS:?}")),
-            ("keyframes", keys.to_string()),
-            ("gap_periods", format!("{periods}")),
-            (
-                "revdist",
-                "default tolerance, warm start (distance_cached)".into(),
-            ),
-            (
-                "fcl",
-                "OBBRSS and RSS on certified meshes, two layouts; ratio vs the faster".into(),
-            ),
-            ("seed", format!("{seed:#x}")),
-        ],
+        &settings
+            .iter()
+            .cloned()
+            .chain(args.shard.provenance())
+            .collect::<Vec<_>>(),
     );
+    // The work units, in the order of the table: (eps, index of the pair); this run's units.
+    let units: Vec<(f64, usize)> = eps_list
+        .iter()
+        .flat_map(|&e| (0..pairs.len()).map(move |p| (e, p)))
+        .collect();
+    let mine = args.shard.units(units.len());
     let mut profiles: HashMap<String, Arc<Profile>> = HashMap::new();
-    for (a, b) in &pairs {
+    for &u in &mine {
+        let (a, b) = &pairs[units[u].1];
         for n in [a, b] {
             if !profiles.contains_key(n) {
                 profiles.insert(n.clone(), Arc::new(experiments::shapes::profile(n)?));
@@ -206,128 +246,169 @@ fn run(args: Args) -> DriverResult {
         }
     }
 
-    // 1. Motions, placed before any timing.
-    let bar = progress::bar((pairs.len() * frames.0) as u64, "motion: place");
-    let mut motions: Vec<Vec<Isometry3<f64>>> = Vec::new();
-    for (a, b) in &pairs {
+    // 1. Motions of this run's pairs, placed before any timing.
+    let mut my_pairs: Vec<usize> = mine.iter().map(|&u| units[u].1).collect();
+    my_pairs.sort_unstable();
+    my_pairs.dedup();
+    let bar = progress::bar((my_pairs.len() * frames.0) as u64, "motion: place");
+    let mut motions: HashMap<usize, Vec<Isometry3<f64>>> = HashMap::new();
+    for &p in &my_pairs {
+        let (a, b) = &pairs[p];
         let name = format!("{a}-{b}");
         let m = SmoothMotion::new(pair_seed(seed, &name), keys, GAPS, periods);
-        motions.push(m.poses(&profiles[a], &profiles[b], frames.0, || bar.inc(1))?);
+        motions.insert(
+            p,
+            m.poses(&profiles[a], &profiles[b], frames.0, || bar.inc(1))?,
+        );
     }
     bar.finish_and_clear();
 
     // 2. Per eps: structures once per shape, then every pair's motion, methods interleaved.
     let mut rows = Vec::new();
     for &eps in &eps_list {
+        let here: Vec<usize> = mine
+            .iter()
+            .copied()
+            .filter(|&u| units[u].0 == eps)
+            .collect();
+        if here.is_empty() {
+            continue;
+        }
         let n = frames_at(eps);
-        let bar = progress::bar(profiles.len() as u64, &format!("meshes {eps:.0e}"));
+        let mut names: Vec<&String> = here
+            .iter()
+            .flat_map(|&u| {
+                let (a, b) = &pairs[units[u].1];
+                [a, b]
+            })
+            .collect();
+        names.sort_unstable();
+        names.dedup();
+        let bar = progress::bar(names.len() as u64, &format!("meshes {eps:.0e}"));
         let mut solids: HashMap<String, Solid> = HashMap::new();
         let mut fcl: HashMap<String, FclShape> = HashMap::new();
-        for (name, p) in &profiles {
+        for name in names {
+            let p = &profiles[name];
             solids.insert(name.clone(), Solid::from_profile(Arc::clone(p), eps)?);
             fcl.insert(name.clone(), FclShape::build(p, eps)?);
             bar.inc(1);
         }
         bar.finish_and_clear();
-        let bar = progress::bar((pairs.len() * n) as u64, &format!("motion {eps:.0e}"));
-        for ((a, b), poses) in pairs.iter().zip(&motions) {
-            let (sa, sb) = (&solids[a], &solids[b]);
-            let (fa, fb) = (&fcl[a], &fcl[b]);
-            let size = diagonal(&profiles[a]) + diagonal(&profiles[b]);
-            let opts = QueryOptions::default();
-            let mut cache = QueryCache::default();
-            let layouts = fa.layouts.len().min(fb.layouts.len());
-            let mut row = Row {
-                pair: format!("{a}-{b}"),
-                eps,
-                frames: n,
-                rev_us: Vec::with_capacity(n),
-                fcl_us: vec![Vec::with_capacity(n); 2 * layouts],
-                rev_blocked_mean: 0.0,
-                fcl_blocked_mean: 0.0,
-                best: 0,
-                triangles: (0..layouts)
-                    .map(|l| fa.layouts[l].triangles() + fb.layouts[l].triangles())
-                    .collect(),
-                node_pairs: 0.0,
-                exact_leaves: 0.0,
-                min_gap: f64::INFINITY,
-                violations: 0,
-            };
-            for (k, pose) in poses[..n].iter().enumerate() {
-                let posed = sb.with_pose(*pose);
-                let methods = 1 + 2 * layouts;
-                // Answers of this frame: revdist's, and FCL OBBRSS's on the balanced layout
-                // (the timed call's result is reused for the cross-check).
-                let (mut rev, mut fcl_balanced) = (None, None);
-                for j in 0..methods {
-                    let m = (j + k) % methods;
-                    if m == 0 {
-                        let t = Instant::now();
-                        let d = distance_cached(sa, &posed, &opts, &mut cache);
-                        row.rev_us.push(us(t.elapsed()));
-                        rev = Some(d);
-                    } else {
-                        let f_m = m - 1;
-                        let t = Instant::now();
-                        let f = fa
-                            .bvh(f_m)
-                            .distance(fb.bvh(f_m), &Isometry3::identity(), pose)?;
-                        row.fcl_us[f_m].push(us(t.elapsed()));
-                        if f_m == 0 {
-                            fcl_balanced = Some(f.distance);
+        let bar = progress::bar((here.len() * n) as u64, &format!("motion {eps:.0e}"));
+        for &u in &here {
+            let (a, b) = &pairs[units[u].1];
+            let poses = &motions[&units[u].1];
+            let row = {
+                let (sa, sb) = (&solids[a], &solids[b]);
+                let (fa, fb) = (&fcl[a], &fcl[b]);
+                let size = diagonal(&profiles[a]) + diagonal(&profiles[b]);
+                let opts = QueryOptions::default();
+                let mut cache = QueryCache::default();
+                let layouts = fa.layouts.len().min(fb.layouts.len());
+                let mut rev_us: Vec<f64> = Vec::with_capacity(n);
+                let mut fcl_us: Vec<Vec<f64>> = vec![Vec::with_capacity(n); 2 * layouts];
+                let mut row = Row {
+                    pair: format!("{a}-{b}"),
+                    eps,
+                    frames: n,
+                    rev: (0.0, 0.0),
+                    fcl: Vec::new(),
+                    rev_blocked_mean: 0.0,
+                    fcl_blocked_mean: 0.0,
+                    best: 0,
+                    triangles: (0..layouts)
+                        .map(|l| fa.layouts[l].triangles() + fb.layouts[l].triangles())
+                        .collect(),
+                    node_pairs: 0.0,
+                    exact_leaves: 0.0,
+                    min_gap: f64::INFINITY,
+                    violations: 0,
+                };
+                for (k, pose) in poses[..n].iter().enumerate() {
+                    let posed = sb.with_pose(*pose);
+                    let methods = 1 + 2 * layouts;
+                    // Answers of this frame: revdist's, and FCL OBBRSS's on the balanced layout
+                    // (the timed call's result is reused for the cross-check).
+                    let (mut rev, mut fcl_balanced) = (None, None);
+                    for j in 0..methods {
+                        let m = (j + k) % methods;
+                        if m == 0 {
+                            let t = Instant::now();
+                            let d = distance_cached(sa, &posed, &opts, &mut cache);
+                            rev_us.push(us(t.elapsed()));
+                            rev = Some(d);
+                        } else {
+                            let f_m = m - 1;
+                            let t = Instant::now();
+                            let f =
+                                fa.bvh(f_m)
+                                    .distance(fb.bvh(f_m), &Isometry3::identity(), pose)?;
+                            fcl_us[f_m].push(us(t.elapsed()));
+                            if f_m == 0 {
+                                fcl_balanced = Some(f.distance);
+                            }
                         }
                     }
-                }
-                let (d, f) = (
-                    rev.expect("revdist ran this frame"),
-                    fcl_balanced.expect("FCL ran this frame"),
-                );
-                row.node_pairs += d.stats.node_pairs as f64;
-                row.exact_leaves += d.stats.leaf_tests as f64;
-                row.min_gap = row.min_gap.min(if d.overlap { -1.0 } else { d.value });
-                let h = fa.layouts[0].cm.bound + fb.layouts[0].cm.bound;
-                if !agrees_with_fcl(&d, f, h, pose, size) {
-                    row.violations += 1;
-                    eprintln!(
-                        "violation: {a}-{b} eps {eps:e} frame {k}: revdist [{}, {}], FCL {f} +- {h}",
-                        d.lower, d.upper
+                    let (d, f) = (
+                        rev.expect("revdist ran this frame"),
+                        fcl_balanced.expect("FCL ran this frame"),
                     );
+                    row.node_pairs += d.stats.node_pairs as f64;
+                    row.exact_leaves += d.stats.leaf_tests as f64;
+                    row.min_gap = row.min_gap.min(if d.overlap { -1.0 } else { d.value });
+                    let h = fa.layouts[0].cm.bound + fb.layouts[0].cm.bound;
+                    if !agrees_with_fcl(&d, f, h, pose, size) {
+                        row.violations += 1;
+                        eprintln!(
+                            "violation: {a}-{b} eps {eps:e} frame {k}: revdist [{}, {}], FCL {f} +- {h}",
+                            d.lower, d.upper
+                        );
+                    }
+                    bar.inc(1);
                 }
-                bar.inc(1);
-            }
-            row.node_pairs /= n as f64;
-            row.exact_leaves /= n as f64;
-            row.best = (0..2 * layouts)
-                .min_by(|&x, &y| mean(&row.fcl_us[x]).total_cmp(&mean(&row.fcl_us[y])))
-                .unwrap_or(0);
-            // Blocked: each method alone over the whole motion, as a simulation loop over
-            // one pair runs it (answers were cross-checked above).
-            let mut cache = QueryCache::default();
-            let times = time_each(poses[..n].iter().map(|pose| sb.with_pose(*pose)), |posed| {
-                std::hint::black_box(distance_cached(sa, &posed, &opts, &mut cache));
-                Ok::<(), Box<dyn std::error::Error>>(())
-            })?;
-            row.rev_blocked_mean = mean(&times);
-            let best = row.best;
-            let times = time_each(&poses[..n], |pose| {
-                std::hint::black_box(fa.bvh(best).distance(
-                    fb.bvh(best),
-                    &Isometry3::identity(),
-                    pose,
-                )?);
-                Ok::<(), Box<dyn std::error::Error>>(())
-            })?;
-            row.fcl_blocked_mean = mean(&times);
-            rows.push(row);
+                row.node_pairs /= n as f64;
+                row.exact_leaves /= n as f64;
+                row.rev = (mean(&rev_us), median(&rev_us));
+                row.fcl = fcl_us.iter().map(|t| (mean(t), median(t))).collect();
+                row.best = (0..2 * layouts)
+                    .min_by(|&x, &y| row.fcl[x].0.total_cmp(&row.fcl[y].0))
+                    .unwrap_or(0);
+                // Blocked: each method alone over the whole motion, as a simulation loop over
+                // one pair runs it (answers were cross-checked above).
+                let mut cache = QueryCache::default();
+                let times =
+                    time_each(poses[..n].iter().map(|pose| sb.with_pose(*pose)), |posed| {
+                        std::hint::black_box(distance_cached(sa, &posed, &opts, &mut cache));
+                        Ok::<(), Box<dyn std::error::Error>>(())
+                    })?;
+                row.rev_blocked_mean = mean(&times);
+                let best = row.best;
+                let times = time_each(&poses[..n], |pose| {
+                    std::hint::black_box(fa.bvh(best).distance(
+                        fb.bvh(best),
+                        &Isometry3::identity(),
+                        pose,
+                    )?);
+                    Ok::<(), Box<dyn std::error::Error>>(())
+                })?;
+                row.fcl_blocked_mean = mean(&times);
+                row
+            };
+            rows.push((u, row));
         }
         bar.finish_and_clear();
         eprintln!(
             "motion eps {eps:.0e}: {} pairs, {n} frames each [{:.0} s]",
-            pairs.len(),
+            here.len(),
             started.elapsed().as_secs_f64()
         );
     }
+    let Some(rows) = args
+        .shard
+        .finish((&args.out.dir, "motion"), &settings, units.len(), rows)?
+    else {
+        return Ok(()); // a shard: its raw rows are written
+    };
 
     let out = &args.out.dir;
     let csv = prov.csv_preamble() + &motion_table().csv_text(&rows);
@@ -353,10 +434,10 @@ fn motion_table() -> Table<'static, Row> {
         .csv("frames", |r| r.frames.to_string())
         .with_markdown_header("frames")
         .right()
-        .csv("revdist_mean_us", |r| format!("{:.2}", mean(&r.rev_us)))
-        .csv("revdist_median_us", |r| format!("{:.2}", median(&r.rev_us)))
+        .csv("revdist_mean_us", |r| format!("{:.2}", r.rev.0))
+        .csv("revdist_median_us", |r| format!("{:.2}", r.rev.1))
         .markdown("revdist mean / median (us)", |r| {
-            format!("{:.0} / {:.0}", mean(&r.rev_us), median(&r.rev_us))
+            format!("{:.0} / {:.0}", r.rev.0, r.rev.1)
         })
         .right()
         .csv("fcl_obbrss_balanced_mean_us", fcl_mean(0, 0))
@@ -365,8 +446,8 @@ fn motion_table() -> Table<'static, Row> {
         .csv("fcl_rss_capped_mean_us", fcl_mean(1, 1))
         .markdown("FCL OBBRSS / RSS mean (us)", |r| {
             let best = |bv: usize| {
-                (0..r.fcl_us.len() / 2)
-                    .map(|l| mean(&r.fcl_us[2 * l + bv]))
+                (0..r.fcl.len() / 2)
+                    .map(|l| r.fcl[2 * l + bv].0)
                     .fold(f64::INFINITY, f64::min)
             };
             format!("{:.0} / {:.0}", best(0), best(1))
@@ -491,7 +572,7 @@ fn draw(out: &std::path::Path, rows: &[Row], eps: f64) -> Result<(), Box<dyn std
     let series = vec![
         BarSeries {
             name: "revdist".into(),
-            values: sel.iter().map(|r| mean(&r.rev_us)).collect(),
+            values: sel.iter().map(|r| r.rev.0).collect(),
         },
         BarSeries {
             name: "FCL (faster of OBBRSS, RSS)".into(),

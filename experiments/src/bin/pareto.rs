@@ -39,6 +39,7 @@ use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::progress::bar;
 use experiments::provenance::Provenance;
 use experiments::shapes::{diagonal, profile, query_tree_bytes};
+use experiments::shard::{Cells, Field, Record, Scalar};
 use experiments::stats::{human_bytes, log_log_slope, median, quantile, us};
 use experiments::table::Table;
 use nalgebra::Isometry3;
@@ -145,6 +146,8 @@ struct Args {
     /// Largest predicted triangle count FCL is run at [default: 2000000]
     #[arg(long, value_name = "N", value_parser = positive_count)]
     max_triangles: Option<usize>,
+    #[command(flatten)]
+    shard: experiments::shard::Flags,
 }
 
 /// What a run measures: the arguments with the defaults filled in.
@@ -203,6 +206,64 @@ struct Row {
     checks: usize,
     violations: usize,
 }
+
+experiments::shard_record!(Row {
+    method,
+    pair,
+    eps,
+    poses,
+    width_max,
+    width_median,
+    median_us,
+    p90_us,
+    build_ms,
+    bytes,
+    node_pairs,
+    zero_lower,
+    triangles,
+    layout,
+    checks,
+    violations,
+});
+
+/// A raw row of `--shard`: a row of the table, and on its pair's first row the FCL levels the
+/// triangle cap left out.
+struct RawRow {
+    row: Row,
+    skipped: Vec<String>,
+}
+
+impl Record for RawRow {
+    fn columns() -> Vec<&'static str> {
+        let mut c = Row::columns();
+        c.push("skipped");
+        c
+    }
+    fn cells(&self) -> Vec<String> {
+        let mut c = self.row.cells();
+        c.push(self.skipped.text());
+        c
+    }
+    fn from_cells(line: &Cells) -> Result<Self, String> {
+        Ok(RawRow {
+            row: Row::from_cells(line)?,
+            skipped: line.get("skipped")?,
+        })
+    }
+}
+
+impl Field for Method {
+    fn text(&self) -> String {
+        self.key().to_owned()
+    }
+    fn parse(cell: &str) -> Result<Self, String> {
+        METHODS
+            .into_iter()
+            .find(|m| m.key() == cell)
+            .ok_or_else(|| format!("'{cell}' is not a method"))
+    }
+}
+impl Scalar for Method {}
 
 /// revdist's solids of one pair at one eps.
 struct RevLevel {
@@ -355,30 +416,52 @@ fn run(cli: Args) -> DriverResult {
     }
     let started = Instant::now();
     let load_start = load_average();
+    let settings = vec![
+        ("pairs", pairs_text(&args.pairs)),
+        ("poses_per_pair", args.poses.to_string()),
+        (
+            "gaps",
+            format!("log-uniform [{:e}, {:e}]", CLOSE_GAPS.0, CLOSE_GAPS.1),
+        ),
+        ("seed", format!("{:#x} xor hash(pair)", args.seed)),
+        ("revdist_eps", eps_text(&args.rev_eps)),
+        ("refine_eps", eps_text(&args.refine_eps)),
+        ("fcl_eps", eps_text(&args.fcl_eps)),
+        ("max_triangles", args.max_triangles.to_string()),
+        ("revdist_build_repeats", BUILD_REPEATS.to_string()),
+    ];
     let prov = Provenance::collect(
         "pareto",
-        &[
-            ("pairs", pairs_text(&args.pairs)),
-            ("poses_per_pair", args.poses.to_string()),
-            (
-                "gaps",
-                format!("log-uniform [{:e}, {:e}]", CLOSE_GAPS.0, CLOSE_GAPS.1),
-            ),
-            ("seed", format!("{:#x} xor hash(pair)", args.seed)),
-            ("revdist_eps", eps_text(&args.rev_eps)),
-            ("refine_eps", eps_text(&args.refine_eps)),
-            ("fcl_eps", eps_text(&args.fcl_eps)),
-            ("max_triangles", args.max_triangles.to_string()),
-            ("revdist_build_repeats", BUILD_REPEATS.to_string()),
-        ],
+        &settings
+            .iter()
+            .cloned()
+            .chain(cli.shard.provenance())
+            .collect::<Vec<_>>(),
     );
-    let mut rows = Vec::new();
-    let mut skipped = Vec::new();
-    for (na, nb) in &args.pairs {
-        let r = run_pair(na, nb, &args)?;
-        rows.extend(r.rows);
-        skipped.extend(r.skipped);
-    }
+    // The work units: one per pair (every revdist answer of a pose is checked against every
+    // FCL answer of that pose, so a pair's methods and levels run together).
+    let raw = cli.shard.run_many(
+        (out, "pareto"),
+        &settings,
+        args.pairs.len(),
+        |u| -> Result<Vec<RawRow>, Box<dyn std::error::Error>> {
+            let (na, nb) = &args.pairs[u];
+            let r = run_pair(na, nb, &args)?;
+            let mut notes = Some(r.skipped);
+            Ok(r.rows
+                .into_iter()
+                .map(|row| RawRow {
+                    row,
+                    skipped: notes.take().unwrap_or_default(),
+                })
+                .collect())
+        },
+    )?;
+    let Some(raw) = raw else {
+        return Ok(()); // a shard: its raw rows are written
+    };
+    let skipped: Vec<String> = raw.iter().flat_map(|r| r.skipped.clone()).collect();
+    let rows: Vec<Row> = raw.into_iter().map(|r| r.row).collect();
     let wall = started.elapsed().as_secs_f64();
     let load = format!("{load_start} / {}", load_average());
     let mut csv = prov.csv_preamble();

@@ -42,12 +42,14 @@ use experiments::peers::parry::{self, ParryShape};
 use experiments::plot::{grouped_bars, BarSeries};
 use experiments::poses::{close_poses, pair_seed, CLOSE_GAPS, CLOSE_SEED};
 use experiments::shapes::{diagonal, profile, query_tree_bytes, timed_pair};
+use experiments::shard::{Field, Scalar};
 use experiments::stats::{human_bytes, median, time_each, us};
 use experiments::table::Table;
 use nalgebra::Isometry3;
 use revdist::profile::Profile;
 use revdist::query::{distance, Distance, QueryOptions};
 use revdist::solid::Solid;
+use std::collections::hash_map::{Entry, HashMap};
 use std::sync::Arc;
 use std::time::Instant;
 use verify::baselines::fcl::{Bv, FclMesh};
@@ -103,7 +105,12 @@ struct Args {
     /// parry3d's poses per mesh row, the first of the row's [default: 8; --paper: all]
     #[arg(long = "parry-poses", value_name = "N", value_parser = positive_count)]
     parry_poses: Option<usize>,
+    #[command(flatten)]
+    shard: experiments::shard::Flags,
 }
+
+/// A pair's profiles and its poses.
+type PlacedPair = (Arc<Profile>, Arc<Profile>, Vec<Isometry3<f64>>);
 
 /// One method's numbers in a row: median query time, build time, memory.
 #[derive(Clone, Copy, Default)]
@@ -134,6 +141,47 @@ struct Row {
     max_width: f64,
     violations: usize,
 }
+
+/// A [`Timed`] in a raw row: `us/build_ms/bytes`.
+impl Field for Timed {
+    fn text(&self) -> String {
+        format!(
+            "{}/{}/{}",
+            self.us.text(),
+            self.build_ms.text(),
+            self.bytes.text()
+        )
+    }
+    fn parse(cell: &str) -> Result<Self, String> {
+        let parts: Vec<&str> = cell.split('/').collect();
+        match parts[..] {
+            [us, build_ms, bytes] => Ok(Timed {
+                us: Field::parse(us)?,
+                build_ms: Field::parse(build_ms)?,
+                bytes: Field::parse(bytes)?,
+            }),
+            _ => Err(format!("'{cell}' is not us/build_ms/bytes")),
+        }
+    }
+}
+impl Scalar for Timed {}
+
+experiments::shard_record!(Row {
+    pair,
+    eps,
+    poses,
+    parry_poses,
+    tris,
+    h_sum,
+    rev,
+    fcl_obbrss,
+    fcl_rss,
+    coal,
+    parry,
+    occt_us,
+    max_width,
+    violations,
+});
 
 impl Row {
     /// The peers' median times by name (those that ran).
@@ -180,6 +228,18 @@ struct ConvexRow {
     violations: usize,
 }
 
+experiments::shard_record!(ConvexRow {
+    pair,
+    poses,
+    rev_us,
+    rev_convex_us,
+    coal,
+    parry_us,
+    parry_excess,
+    max_width,
+    violations,
+});
+
 impl ConvexRow {
     fn fastest(&self) -> (&'static str, f64) {
         match &self.coal {
@@ -225,17 +285,54 @@ fn run(args: Args) -> DriverResult {
     if let Err(e) = &coal {
         eprintln!("peers: {e}");
     }
-    let mut rows = Vec::new();
-    for (na, nb) in &pairs {
-        let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
-        let pair = format!("{na}-{nb}");
-        let placed = close_poses(&pa, &pb, poses, CLOSE_GAPS, pair_seed(seed, &pair), || {})?;
-        for &eps in &eps_list {
+    let convex_poses = c.poses.or(c.paper.pick(CONVEX_POSES, PAPER_POSES));
+    let settings = vec![
+        ("poses", poses.to_string()),
+        ("parry_poses", parry_poses.to_string()),
+        (
+            "parry_row_budget_s",
+            parry_budget.map_or("none".into(), |b| b.to_string()),
+        ),
+        ("convex_poses", convex_poses.to_string()),
+        ("eps", format!("{eps_list:?}")),
+        ("convex_eps", format!("{CONVEX_EPS:e}")),
+        (
+            "pairs",
+            pairs
+                .iter()
+                .map(|(a, b)| format!("{a}-{b}"))
+                .collect::<Vec<_>>()
+                .join(","),
+        ),
+        ("coal", coal_version.clone()),
+        ("parry3d", "parry3d-f64 0.31".into()),
+        ("seed", format!("{seed:#x}")),
+    ];
+    // The work units of `--shard`: the mesh table's rows (pair x eps, a pair's poses placed
+    // once per shard and reused at every eps), and the convex table's rows, split alike.
+    let units: Vec<(usize, f64)> = (0..pairs.len())
+        .flat_map(|p| eps_list.iter().map(move |&e| (p, e)))
+        .collect();
+    let mut placed: HashMap<usize, PlacedPair> = HashMap::new();
+    let rows = args.shard.run(
+        (&c.out.dir, "peers"),
+        &settings,
+        units.len(),
+        |u| -> Res<Row> {
+            let (k, eps) = units[u];
+            let (na, nb) = &pairs[k];
+            let pair = format!("{na}-{nb}");
+            if let Entry::Vacant(slot) = placed.entry(k) {
+                let (pa, pb) = (Arc::new(profile(na)?), Arc::new(profile(nb)?));
+                let p = close_poses(&pa, &pb, poses, CLOSE_GAPS, pair_seed(seed, &pair), || {})?;
+                slot.insert((pa, pb, p));
+            }
+            let (pa, pb, p) = &placed[&k];
             let row = mesh_row(
                 &pair,
-                (&pa, &pb),
+                (pa, pb),
                 eps,
-                &placed,
+                p,
                 (parry_poses, parry_budget),
                 &mut coal,
             )?;
@@ -247,39 +344,33 @@ fn run(args: Args) -> DriverResult {
                 row.ratio(),
                 started.elapsed().as_secs_f64()
             );
-            rows.push(row);
-        }
-    }
-    let convex_poses = c.poses.or(c.paper.pick(CONVEX_POSES, PAPER_POSES));
-    let mut convex = Vec::new();
-    for (i, a) in CONVEX_MODELS.iter().enumerate() {
-        for b in &CONVEX_MODELS[i..] {
-            convex.push(convex_row(a, b, convex_poses, seed, &mut coal)?);
-        }
-    }
+            Ok(row)
+        },
+    )?;
+    let convex_pairs: Vec<(&str, &str)> = CONVEX_MODELS
+        .iter()
+        .enumerate()
+        .flat_map(|(i, a)| CONVEX_MODELS[i..].iter().map(move |b| (*a, *b)))
+        .collect();
+    let convex = args.shard.run(
+        (&c.out.dir, "peers_convex"),
+        &settings,
+        convex_pairs.len(),
+        |u| {
+            let (a, b) = convex_pairs[u];
+            convex_row(a, b, convex_poses, seed, &mut coal)
+        },
+    )?;
+    let (Some(rows), Some(convex)) = (rows, convex) else {
+        return Ok(()); // a shard: its raw rows are written
+    };
     let prov = experiments::provenance::Provenance::collect(
         "peers (revdist vs FCL, coal, parry3d in one run)",
-        &[
-            ("poses", poses.to_string()),
-            ("parry_poses", parry_poses.to_string()),
-            (
-                "parry_row_budget_s",
-                parry_budget.map_or("none".into(), |b| b.to_string()),
-            ),
-            ("convex_poses", convex_poses.to_string()),
-            ("eps", format!("{eps_list:?}")),
-            ("convex_eps", format!("{CONVEX_EPS:e}")),
-            (
-                "pairs",
-                pairs
-                    .iter()
-                    .map(|(a, b)| format!("{a}-{b}"))
-                    .collect::<Vec<_>>()
-                    .join(","),
-            ),
-            ("coal", coal_version.clone()),
-            ("parry3d", "parry3d-f64 0.31".into()),
-        ],
+        &settings
+            .iter()
+            .cloned()
+            .chain(args.shard.provenance())
+            .collect::<Vec<_>>(),
     );
     let out = &c.out.dir;
     std::fs::write(

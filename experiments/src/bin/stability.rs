@@ -21,8 +21,9 @@ use experiments::plot::{colour, log_tick, PlotResult, CAPTION, FONT, LABEL, TICK
 use experiments::progress::bar;
 use experiments::provenance::Provenance;
 use experiments::stability::{
-    circle_samples, delta_value, solid_samples, summarise, Config, Level, Row, Sample,
-    CIRCLE_FAMILIES, CIRCLE_REL_BOUND, DEFAULT_EPS, DELTA_EXPONENTS, SOLID_FAMILIES, UNIT_ROUNDOFF,
+    circle_jobs, circle_samples_where, delta_value, solid_jobs, solid_samples_where, summarise,
+    Config, Level, Row, Sample, CIRCLE_FAMILIES, CIRCLE_REL_BOUND, DEFAULT_EPS, DELTA_EXPONENTS,
+    SOLID_FAMILIES, UNIT_ROUNDOFF,
 };
 use experiments::table::Table;
 use plotters::prelude::*;
@@ -50,6 +51,8 @@ struct Args {
     seeds: Option<usize>,
     #[command(flatten)]
     paper: Paper,
+    #[command(flatten)]
+    shard: experiments::shard::Flags,
 }
 
 /// The study's errors (shareable across threads) as a driver's error.
@@ -67,13 +70,35 @@ fn run(args: Args) -> DriverResult {
         .unwrap_or(args.paper.pick(DEFAULT_SEEDS, PAPER_SEEDS));
     let out = &args.out.dir;
     let cfg = Config::full(seeds, DEFAULT_EPS);
+    let settings = vec![
+        ("seeds", seeds.to_string()),
+        (
+            "deltas",
+            format!(
+                "0 and 1e-{}..1e-{}",
+                DELTA_EXPONENTS.end(),
+                DELTA_EXPONENTS.start()
+            ),
+        ),
+        ("solid_eps", format!("{DEFAULT_EPS:e}")),
+        ("circle_rel_bound", format!("{CIRCLE_REL_BOUND:e}")),
+    ];
+    // The work units: the circle level's jobs, then the solid level's (one sample each,
+    // seeded by its case); this run's.
+    let circles = circle_jobs(&cfg);
+    let units = circles + solid_jobs(&cfg);
+    let mut wanted = vec![false; units];
+    for u in args.shard.units(units) {
+        wanted[u] = true;
+    }
     let start = Instant::now();
     let pb = bar(0, "circles");
-    let mut samples = circle_samples(&cfg, Some(&pb)).map_err(boxed)?;
+    let mut samples = circle_samples_where(&cfg, Some(&pb), &|k| wanted[k]).map_err(boxed)?;
     pb.finish_and_clear();
     let t_circles = start.elapsed().as_secs_f64();
     let pb = bar(0, "solids");
-    samples.extend(solid_samples(&cfg, Some(&pb)).map_err(boxed)?);
+    let solids = solid_samples_where(&cfg, Some(&pb), &|k| wanted[circles + k]).map_err(boxed)?;
+    samples.extend(solids.into_iter().map(|(k, s)| (circles + k, s)));
     pb.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
     println!(
@@ -81,24 +106,22 @@ fn run(args: Args) -> DriverResult {
         samples.len(),
         seconds - t_circles
     );
+    let Some(samples) = args
+        .shard
+        .finish((out, "stability"), &settings, units, samples)?
+    else {
+        return Ok(()); // a shard: its raw rows are written
+    };
 
     let rows = summarise(&samples);
     let prov = Provenance::collect(
         "stability",
-        &[
-            ("seeds", seeds.to_string()),
-            (
-                "deltas",
-                format!(
-                    "0 and 1e-{}..1e-{}",
-                    DELTA_EXPONENTS.end(),
-                    DELTA_EXPONENTS.start()
-                ),
-            ),
-            ("solid_eps", format!("{DEFAULT_EPS:e}")),
-            ("circle_rel_bound", format!("{CIRCLE_REL_BOUND:e}")),
-            ("seconds", format!("{seconds:.1}")),
-        ],
+        &settings
+            .iter()
+            .cloned()
+            .chain([("seconds", format!("{seconds:.1}"))])
+            .chain(args.shard.provenance())
+            .collect::<Vec<_>>(),
     );
     let csv = prov.csv_preamble() + &delta_table().csv_text(&rows);
     let md = markdown(&prov, &rows, &samples, seeds);

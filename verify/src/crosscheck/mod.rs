@@ -73,6 +73,7 @@ pub mod occt;
 pub mod occt_times;
 pub mod options;
 pub mod poses;
+mod raw;
 pub mod report;
 pub mod runner;
 pub mod shapes;

@@ -157,10 +157,38 @@ fn shape(name: &str, eps: &[f64]) -> Result<Shape, String> {
     })
 }
 
-/// Runs the OCCT sweep of `opts` (nothing when `occt_poses` is 0). Errors: OCCT missing, a
-/// model OCCT cannot build, or an OCCT query that fails.
-pub fn run(opts: &Options, threads: usize) -> Result<Vec<CaseRecord>, String> {
-    if opts.occt_poses == 0 || opts.occt_pairs.is_empty() {
+/// The jobs of the OCCT sweep of `opts`: (pair, first pose, end of the poses), numbered as
+/// listed.
+fn job_list(opts: &Options) -> Vec<(usize, usize, usize)> {
+    let mut jobs = Vec::new();
+    for pair in 0..opts.occt_pairs.len() {
+        for start in (0..opts.occt_poses).step_by(BLOCK) {
+            jobs.push((pair, start, (start + BLOCK).min(opts.occt_poses)));
+        }
+    }
+    jobs
+}
+
+/// How many jobs the OCCT sweep of `opts` has.
+pub fn jobs(opts: &Options) -> usize {
+    job_list(opts).len()
+}
+
+/// Runs the OCCT sweep of `opts` (nothing when `occt_poses` is 0): job `j` is work unit
+/// `first_unit + j`, run when `keep` accepts that unit; each record with its unit. Errors:
+/// OCCT missing, a model OCCT cannot build, or an OCCT query that fails.
+pub fn run(
+    opts: &Options,
+    threads: usize,
+    (first_unit, keep): (usize, &dyn Fn(usize) -> bool),
+) -> Result<Vec<(usize, CaseRecord)>, String> {
+    let jobs: Vec<(usize, (usize, usize, usize))> = job_list(opts)
+        .into_iter()
+        .enumerate()
+        .map(|(j, job)| (first_unit + j, job))
+        .filter(|(u, _)| keep(*u))
+        .collect();
+    if jobs.is_empty() {
         return Ok(Vec::new());
     }
     crate::baselines::occt::version().map_err(|e| e.to_string())?;
@@ -171,17 +199,12 @@ pub fn run(opts: &Options, threads: usize) -> Result<Vec<CaseRecord>, String> {
         ));
     }
     let mut shapes: HashMap<String, Arc<Shape>> = HashMap::new();
-    for (a, b) in &opts.occt_pairs {
+    for (_, (pair, _, _)) in &jobs {
+        let (a, b) = &opts.occt_pairs[*pair];
         for n in [a, b] {
             if !shapes.contains_key(n) {
                 shapes.insert(n.clone(), Arc::new(shape(n, &opts.occt_eps)?));
             }
-        }
-    }
-    let mut jobs = Vec::new();
-    for pair in 0..opts.occt_pairs.len() {
-        for start in (0..opts.occt_poses).step_by(BLOCK) {
-            jobs.push((pair, start, (start + BLOCK).min(opts.occt_poses)));
         }
     }
     let next = AtomicUsize::new(0);
@@ -194,13 +217,16 @@ pub fn run(opts: &Options, threads: usize) -> Result<Vec<CaseRecord>, String> {
                 let mut solids: HashMap<String, OcctSolid> = HashMap::new();
                 loop {
                     let j = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(&(pair, start, end)) = jobs.get(j) else {
+                    let Some(&(unit, (pair, start, end))) = jobs.get(j) else {
                         break;
                     };
                     let (na, nb) = &opts.occt_pairs[pair];
                     let out = occt_job(&shapes[na], &shapes[nb], start..end, opts, &mut solids);
                     match out {
-                        Ok(mut v) => records.lock().expect("records lock").append(&mut v),
+                        Ok(v) => records
+                            .lock()
+                            .expect("records lock")
+                            .extend(v.into_iter().map(|r| (unit, r))),
                         Err(e) => errors.lock().expect("errors lock").push(e),
                     }
                 }

@@ -35,6 +35,8 @@ pub struct Options {
     pub occt_eps: Vec<f64>,
     /// Pairs of the OCCT sweep (default: [`super::occt::occt_pairs`]).
     pub occt_pairs: Vec<(String, String)>,
+    /// Run only this shard's jobs ([`super::runner::run_units`] numbers them).
+    pub shard: Option<crate::shard::Shard>,
 }
 
 impl Default for Options {
@@ -50,6 +52,7 @@ impl Default for Options {
             occt_poses: DEFAULT_OCCT_POSES,
             occt_eps: DEFAULT_OCCT_EPS.to_vec(),
             occt_pairs: super::occt::occt_pairs(),
+            shard: None,
         }
     }
 }

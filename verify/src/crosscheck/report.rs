@@ -187,6 +187,32 @@ pub struct Report {
 type GroupKey = (Check, String, String, u64);
 
 impl Report {
+    /// The report of `records` (in any order: they are sorted by check, pair, eps and pose
+    /// number), run with `options` on `threads` threads; `(prepare, wall)` times.
+    pub fn new(
+        mut records: Vec<CaseRecord>,
+        options: Options,
+        threads: usize,
+        (prepare_time, wall): (Duration, Duration),
+    ) -> Report {
+        records.sort_by(|x, y| {
+            (x.check, &x.a, &x.b, x.eps.to_bits(), x.index).cmp(&(
+                y.check,
+                &y.a,
+                &y.b,
+                y.eps.to_bits(),
+                y.index,
+            ))
+        });
+        Report {
+            records,
+            options,
+            threads,
+            prepare_time,
+            wall,
+        }
+    }
+
     /// Tallies per (check, pair, eps), in a stable order.
     pub fn groups(&self) -> BTreeMap<GroupKey, Tally> {
         let mut g: BTreeMap<GroupKey, Tally> = BTreeMap::new();

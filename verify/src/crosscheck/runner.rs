@@ -15,7 +15,7 @@ use revdist::rng::SplitMix64;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Poses per job: small enough to balance two threads, large enough to reuse the BVHs.
 const BLOCK: usize = 25;
@@ -38,6 +38,30 @@ fn key(name: &str, eps: f64) -> Key {
 
 /// Runs the cross-check.
 pub fn run(opts: &Options) -> Result<Report, String> {
+    let r = run_units(opts)?;
+    Ok(Report::new(
+        r.records.into_iter().map(|(_, c)| c).collect(),
+        opts.clone(),
+        r.threads,
+        (r.prepare_time, r.wall),
+    ))
+}
+
+/// What [`run_units`] computed.
+pub struct UnitRecords {
+    /// Each record with its job's number (its work unit for `--shard`).
+    pub records: Vec<(usize, CaseRecord)>,
+    /// Jobs of the whole campaign: the mesh and convex jobs, then the OCCT sweep's.
+    pub units: usize,
+    pub threads: usize,
+    pub prepare_time: Duration,
+    pub wall: Duration,
+}
+
+/// Runs the jobs of `opts.shard` (every job without one): jobs are numbered as listed (mesh
+/// pairs x eps x blocks of poses, then the convex pairs', then the OCCT sweep's), each case
+/// seeded by its pair, eps and pose number, so a shard's cases are those of the unsharded run.
+pub fn run_units(opts: &Options) -> Result<UnitRecords, String> {
     if opts.eps.is_empty() || opts.eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
         return Err(format!("eps must be positive numbers, got {:?}", opts.eps));
     }
@@ -46,29 +70,7 @@ pub fn run(opts: &Options) -> Result<Report, String> {
         crate::baselines::occt::version().map_err(|e| e.to_string())?;
     }
     let t0 = Instant::now();
-    // Shapes, built once and shared read-only by the workers.
-    let mut prepared: HashMap<Key, Arc<Prepared>> = HashMap::new();
-    // Only the shapes of checks that run (tessellations are not free).
-    let mesh_pairs = if opts.poses > 0 { &opts.pairs[..] } else { &[] };
-    let convex_pairs = if opts.convex_poses > 0 {
-        &opts.convex_pairs[..]
-    } else {
-        &[]
-    };
-    let names = mesh_pairs
-        .iter()
-        .chain(convex_pairs)
-        .flat_map(|(a, b)| [a.clone(), b.clone()]);
-    for name in names {
-        for &eps in &opts.eps {
-            if let std::collections::hash_map::Entry::Vacant(e) = prepared.entry(key(&name, eps)) {
-                e.insert(Arc::new(prepare(&name, eps)?));
-            }
-        }
-    }
-    let prepare_time = t0.elapsed();
-
-    let mut jobs = Vec::new();
+    let mut all_jobs = Vec::new();
     for (convex, pairs, n) in [
         (false, &opts.pairs, opts.poses),
         (true, &opts.convex_pairs, opts.convex_poses),
@@ -76,7 +78,7 @@ pub fn run(opts: &Options) -> Result<Report, String> {
         for pair in 0..pairs.len() {
             for eps in 0..opts.eps.len() {
                 for start in (0..n).step_by(BLOCK) {
-                    jobs.push(Job {
+                    all_jobs.push(Job {
                         convex,
                         pair,
                         eps,
@@ -87,6 +89,36 @@ pub fn run(opts: &Options) -> Result<Report, String> {
             }
         }
     }
+    let units = all_jobs.len() + super::occt::jobs(opts);
+    let mut keep = vec![opts.shard.is_none(); units];
+    for u in opts.shard.map(|s| s.units(units)).unwrap_or_default() {
+        keep[u] = true;
+    }
+    let owns = |u: usize| keep[u];
+    let jobs: Vec<(usize, Job)> = all_jobs
+        .into_iter()
+        .enumerate()
+        .filter(|(u, _)| owns(*u))
+        .collect();
+    // Shapes of the jobs that run, built once and shared read-only by the workers
+    // (tessellations are not free).
+    let mut prepared: HashMap<Key, Arc<Prepared>> = HashMap::new();
+    for (_, job) in &jobs {
+        let pairs = if job.convex {
+            &opts.convex_pairs
+        } else {
+            &opts.pairs
+        };
+        let (a, b) = &pairs[job.pair];
+        let eps = opts.eps[job.eps];
+        for name in [a, b] {
+            if let std::collections::hash_map::Entry::Vacant(e) = prepared.entry(key(name, eps)) {
+                e.insert(Arc::new(prepare(name, eps)?));
+            }
+        }
+    }
+    let prepare_time = t0.elapsed();
+
     let threads = if opts.threads == 0 {
         std::thread::available_parallelism().map_or(1, |n| n.get())
     } else {
@@ -101,7 +133,9 @@ pub fn run(opts: &Options) -> Result<Report, String> {
                 let mut bvhs: HashMap<Key, FclMesh> = HashMap::new();
                 loop {
                     let j = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(job) = jobs.get(j) else { break };
+                    let Some((unit, job)) = jobs.get(j) else {
+                        break;
+                    };
                     let pairs = if job.convex {
                         &opts.convex_pairs
                     } else {
@@ -117,7 +151,10 @@ pub fn run(opts: &Options) -> Result<Report, String> {
                         mesh_job(a, b, job, opts.seed, &mut bvhs)
                     };
                     match out {
-                        Ok(mut v) => records.lock().expect("records lock").append(&mut v),
+                        Ok(v) => records
+                            .lock()
+                            .expect("records lock")
+                            .extend(v.into_iter().map(|r| (*unit, r))),
                         Err(e) => errors.lock().expect("errors lock").push(e),
                     }
                 }
@@ -129,19 +166,11 @@ pub fn run(opts: &Options) -> Result<Report, String> {
         return Err(errors.join("\n"));
     }
     let mut records = records.into_inner().expect("records lock");
-    records.append(&mut super::occt::run(opts, threads)?);
-    records.sort_by(|x, y| {
-        (x.check, &x.a, &x.b, x.eps.to_bits(), x.index).cmp(&(
-            y.check,
-            &y.a,
-            &y.b,
-            y.eps.to_bits(),
-            y.index,
-        ))
-    });
-    Ok(Report {
+    let first_occt = units - super::occt::jobs(opts);
+    records.extend(super::occt::run(opts, threads, (first_occt, &owns))?);
+    Ok(UnitRecords {
         records,
-        options: opts.clone(),
+        units,
         threads,
         prepare_time,
         wall: t0.elapsed(),
