@@ -219,41 +219,19 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     // The answer is widened by the rounding slack on both sides: the traversal stops that
     // much narrower, so that `upper - lower` keeps within the requested width.
     let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);
+    // A query whose interval may reach 0 within the requested width (the surfaces may touch
+    // within it) keeps narrowing until its lower bound clears the slack (`lower_floor`):
+    // certifying "no overlap" after it would search both solids for a point inside the
+    // other. It used to be a second pass at tolerance 0 from the root; one pass does the
+    // same without expanding the upper node pairs twice.
     let topts = TraversalOptions {
         tolerance: (width - 2.0 * slack).max(0.0),
         lower_goal: f64::INFINITY,
+        lower_floor: slack,
         budget: opts.budget,
         bound: opts.bound,
     };
-    let mut s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
-    if !s.surfaces_meet
-        && s.lower - slack <= 0.0
-        && topts.tolerance > 0.0
-        && !s.stats.budget_exhausted
-    {
-        // The interval reached 0 only because the tolerance let the traversal stop early:
-        // certifying "no overlap" below would search both solids for a point inside the
-        // other. A second pass with tolerance 0 that stops as soon as its lower bound
-        // clears the slack (`lower_goal`) usually lifts it above 0 for a fraction of that.
-        // The answer keeps the better bound of each side: both passes bound the same
-        // surface distance, and the first pass's upper bound already met the width.
-        let exact = TraversalOptions {
-            tolerance: 0.0,
-            lower_goal: slack,
-            ..topts
-        };
-        let first = s;
-        s = traverse(&a.tree, &b.tree, &pos_ab, &exact, first.best_pair);
-        s.stats.add(&first.stats);
-        s.lower = s.lower.max(first.lower);
-        if !s.surfaces_meet && first.upper < s.upper {
-            s.upper = first.upper;
-            s.approx = first.approx;
-            s.point_a = first.point_a;
-            s.point_b = first.point_b;
-            s.best_pair = first.best_pair;
-        }
-    }
+    let s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
     cache.last_pair = s.best_pair.or(cache.last_pair);
     let eps_sum = a.tree.eps + b.tree.eps;
     let world = |p: &Point3<f64>| a.pose * p;

@@ -302,6 +302,12 @@ pub struct TraversalOptions {
     /// query may stop once its bounds answer the caller's question). `f64::INFINITY`
     /// never stops early.
     pub lower_goal: f64,
+    /// Neither stop nor prune while the lower bound is at most this, whatever the tolerance:
+    /// a query whose surfaces may meet within its width (lower bound at or below the
+    /// rounding slack) would otherwise search both solids for an overlap; with the slack as
+    /// the floor the same pass narrows until its lower bound clears it, or until every pair
+    /// below it is resolved. `f64::NEG_INFINITY` for none.
+    pub lower_floor: f64,
     pub budget: Budget,
     pub bound: BoundKind,
 }
@@ -352,6 +358,16 @@ pub fn traverse(
         return out;
     }
     let tol = opts.tolerance.max(0.0);
+    // The pruning level: pairs whose key reaches it are done, unless the key is still at or
+    // below the floor ([`TraversalOptions::lower_floor`]).
+    let level = |upper: f64| {
+        let at = upper - tol;
+        if at > opts.lower_floor {
+            at
+        } else {
+            opts.lower_floor.next_up()
+        }
+    };
     // One allocation up front: growing from empty reallocated five or six times a query
     // (3.7% of the query time at eps 1e-4; queues peak at a few dozen entries).
     let mut heap = BinaryHeap::with_capacity(QUEUE_CAPACITY);
@@ -395,7 +411,7 @@ pub fn traverse(
         let e = ta.nodes[a as usize].eps + tb.nodes[b as usize].eps;
         // Patch pairs at least `upper - tol + e` apart cannot improve the answer: their
         // bound is enough.
-        let prune_at = out.upper - tol + e;
+        let prune_at = level(out.upper) + e;
         let clock = Instant::now();
         let staged = match from {
             State::Open => leaves.bounds(a, b, prune_at, out.upper - e),
@@ -447,7 +463,7 @@ pub fn traverse(
             lower = out.upper;
             break;
         };
-        if e.state == State::Resolved || e.key >= out.upper - tol || e.key > opts.lower_goal {
+        if e.state == State::Resolved || e.key >= level(out.upper) || e.key > opts.lower_goal {
             lower = e.key;
             break;
         }
@@ -470,7 +486,7 @@ pub fn traverse(
                 lower = f64::NEG_INFINITY;
                 break;
             }
-            if key < out.upper - tol {
+            if key < level(out.upper) {
                 heap.push(Entry {
                     key,
                     a: e.a,
@@ -484,7 +500,7 @@ pub fn traverse(
         }
         for (a, b) in child_pairs(ta, tb, e.a, e.b) {
             stats.bound_tests += 1;
-            let prune_at = out.upper - tol;
+            let prune_at = level(out.upper);
             let key = node_key(ta, tb, a, b, pos_ab, opts.bound, e.key, prune_at);
             if key < prune_at {
                 heap.push(Entry {
