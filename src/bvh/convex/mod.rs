@@ -1,7 +1,8 @@
 //! Convex solids of revolution: a certificate that the solid is convex, decided on its
 //! exact profile ([`convexity`]), and the support function of the convex hull of its
 //! approximating surface ([`support`]), which the query's convex fast path
-//! ([`crate::query::convex`]) runs GJK on.
+//! ([`crate::query::convex`]) runs GJK on, and the chain's pieces kept for its nearest-point
+//! questions ([`nearest`]).
 //!
 //! **Error bound.** The hull of the tree's approximating surface `H` and the true solid `S`
 //! are within [`ConvexHullData::error`] of each other (two-sided Hausdorff distance between
@@ -12,11 +13,13 @@
 
 pub mod convexity;
 pub mod exact;
+pub mod nearest;
 pub mod support;
 
 use super::QueryTree;
 use crate::profile::Profile;
 pub use convexity::{certify_convex, ConvexProfile};
+pub use nearest::MeridianPiece;
 pub use support::SupportTable;
 
 /// What the convex fast path needs of a solid certified convex.
@@ -29,6 +32,9 @@ pub struct ConvexHullData {
     /// Two-sided Hausdorff bound between the hull and the true solid (module doc): the
     /// tree's eps, the certificate's dent and the hull's rounding.
     pub error: f64,
+    /// The tree's pieces (`tree.patches`, same order) for nearest points in the meridian
+    /// plane ([`nearest`]).
+    pub pieces: Vec<MeridianPiece>,
 }
 
 impl ConvexHullData {
@@ -42,6 +48,7 @@ impl ConvexHullData {
             certificate,
             support,
             error,
+            pieces: nearest::meridian_pieces(tree),
         })
     }
 }

@@ -30,6 +30,7 @@
 //! there, or when the hulls meet without a certified common point, the path declines and the
 //! query traverses.
 
+mod ball;
 pub mod gjk;
 #[cfg(test)]
 mod tests;
@@ -39,7 +40,7 @@ use crate::bvh::containment::point_in_solid;
 use crate::bvh::convex::ConvexHullData;
 use crate::bvh::QueryTree;
 use crate::tolerances::SETTLE_REL;
-use gjk::gjk;
+use gjk::{Gjk, Status};
 use nalgebra::{Isometry3, Point3, Vector3};
 use witness::nearest_surface_point;
 
@@ -105,49 +106,101 @@ pub fn convex_distance(
     // surfaces usually shorten the pair (they remove the depths behind the supporting
     // planes), else GJK resumes with a quarter of the gap.
     let mut target_gap = (allowed - 2.0 * widen).min(requested_width - dents + rounding);
-    let mut start = initial;
-    let mut best_lower = f64::NEG_INFINITY;
-    for _ in 0..=GJK_RESUMES {
-        let r = gjk(
-            |d| ca.support.support(d),
-            |d| rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift,
-            start,
-            target_gap,
-            1e-14 * scale,
-        );
-        if r.intersect {
-            return certified_overlap(ta, tb, pos_ab, slack, &r, centers);
+    let support_a = |d: &Vector3<f64>| ca.support.support(d);
+    let support_b = |d: &Vector3<f64>| {
+        rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift
+    };
+    let bounds = Bounds {
+        widen,
+        requested_width,
+        rounding,
+        allowed,
+    };
+    if ta.offset.is_some() || tb.offset.is_some() {
+        if let Some(answer) = ball::ball_distance(ta, tb, pos_ab, &bounds, support_a, support_b) {
+            return Some(answer);
         }
-        best_lower = best_lower.max(r.lower);
-        let (point_a, point_b) = surface_witnesses(ta, tb, pos_ab, &r);
+    }
+    let mut g = Gjk::new(support_a, support_b, initial, 1e-14 * scale);
+    let mut resumes = 0;
+    loop {
+        g.probe();
+        let gap = g.gap();
+        if gap <= target_gap {
+            if let Some(answer) = bounds.answer(ta, tb, pos_ab, &g.result()) {
+                return Some(answer);
+            }
+            // The witnesses moved to the surfaces leave the value or the interval outside
+            // the width: go on to a quarter of the gap.
+            if resumes == GJK_RESUMES || gap.is_nan() || gap <= 0.0 {
+                return None;
+            }
+            resumes += 1;
+            target_gap = 0.25 * gap;
+        }
+        match g.advance() {
+            Status::Running => {}
+            Status::Intersect => {
+                return certified_overlap(ta, tb, pos_ab, slack, &g.result(), centers)
+            }
+            Status::Stalled => return bounds.answer(ta, tb, pos_ab, &g.result()),
+        }
+    }
+}
+
+/// What an answer must meet (module doc, "Width").
+struct Bounds {
+    /// The hulls' errors, the slack and GJK's rounding.
+    widen: f64,
+    requested_width: f64,
+    rounding: f64,
+    /// The widest interval allowed.
+    allowed: f64,
+}
+
+impl Bounds {
+    /// The answer with witnesses `point_a`, `point_b` on the approximating surfaces, a
+    /// lower bound `lower` of the hulls' distance and an upper bound `upper` of it, when it
+    /// fits.
+    fn finish(
+        &self,
+        point_a: Point3<f64>,
+        point_b: Point3<f64>,
+        lower_hulls: f64,
+        upper_hulls: f64,
+        iterations: usize,
+    ) -> Option<ConvexAnswer> {
         let value = (point_a - point_b).norm();
         // `value` is a distance between points of the approximating solids, which lie in the
         // hulls: `lower <= d(H_A, H_B) <= value`. It exceeds the approximations' distance by
         // at most `value - lower`, which must fit the requested width (up to rounding) for
         // the value to be within `eps_a + eps_b + width` of the truth.
-        let fits = value - best_lower <= requested_width + rounding;
+        let fits = value - lower_hulls <= self.requested_width + self.rounding;
         // Any number above an upper bound is one; any number below a lower bound is one.
-        let lower = (best_lower - widen).max(0.0).min(value);
-        let upper = (r.upper + widen).max(value);
-        if fits && upper - lower <= allowed {
-            return Some(ConvexAnswer {
-                value,
-                lower,
-                upper,
-                point_a,
-                point_b,
-                overlap: false,
-                iterations: r.iterations,
-            });
-        }
-        let gap = r.upper - best_lower;
-        if gap.is_nan() || gap <= 0.0 || r.iterations >= gjk::MAX_ITERATIONS {
-            return None;
-        }
-        target_gap = target_gap.min(0.25 * gap);
-        start = r.point_a - r.point_b;
+        let lower = (lower_hulls - self.widen).max(0.0).min(value);
+        let upper = (upper_hulls.min(value) + self.widen).max(value);
+        (fits && upper - lower <= self.allowed).then_some(ConvexAnswer {
+            value,
+            lower,
+            upper,
+            point_a,
+            point_b,
+            overlap: false,
+            iterations,
+        })
     }
-    None
+
+    /// The answer from GJK's state `r`, when the witnesses moved to the surfaces fit.
+    fn answer(
+        &self,
+        ta: &QueryTree,
+        tb: &QueryTree,
+        pos_ab: &Isometry3<f64>,
+        r: &gjk::GjkResult,
+    ) -> Option<ConvexAnswer> {
+        let (point_a, point_b) = surface_witnesses(ta, tb, pos_ab, r);
+        self.finish(point_a, point_b, r.lower, r.upper, r.iterations)
+    }
 }
 
 /// GJK's closest points moved to the approximating surfaces ([`witness`]), B's in A's
