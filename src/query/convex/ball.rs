@@ -17,7 +17,7 @@
 //! exceeds the separation by more than the width and GJK takes over.
 
 use super::witness::nearest_surface_point;
-use super::{Bounds, ConvexAnswer};
+use super::{Bounds, ConvexAnswer, Method};
 use crate::bvh::offset_solid::Core;
 use crate::bvh::QueryTree;
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -59,5 +59,5 @@ pub(super) fn ball_distance(
     // The separation of the hulls along the pair's direction (A towards B).
     let d = (point_b - point_a).try_normalize(0.0)?;
     let lower = d.dot(&(support_b(&-d) - support_a(&d)));
-    bounds.finish(point_a, point_b, lower, f64::INFINITY, 0)
+    bounds.finish(point_a, point_b, lower, f64::INFINITY, 0, Method::Ball)
 }

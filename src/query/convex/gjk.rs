@@ -209,6 +209,11 @@ where
         Status::Running
     }
 
+    /// The simplex's support points of A and of B (as many as its vertices).
+    pub fn support_points(&self) -> impl Iterator<Item = (Point3<f64>, Point3<f64>)> + '_ {
+        self.simplex[..self.len].iter().map(|s| (s.a, s.b))
+    }
+
     /// The closest points so far and the bounds.
     pub fn result(&self) -> GjkResult {
         let simplex = &self.simplex[..self.len];
@@ -350,13 +355,13 @@ fn best<const N: usize>(options: [(Vector3<f64>, Face); N]) -> (Vector3<f64>, Fa
 fn tetrahedron(s: &[Vertex]) -> (Vector3<f64>, Face) {
     let p = [s[0].w, s[1].w, s[2].w, s[3].w];
     // Faces with the opposite vertex; the origin is outside a face when it and the opposite
-    // vertex lie on different sides of the face's plane.
-    let faces = [
-        ([0, 1, 2], 3),
-        ([0, 1, 3], 2),
-        ([0, 2, 3], 1),
-        ([1, 2, 3], 0),
-    ];
+    // vertex lie on different sides of the face's plane. Only the faces through the newest
+    // vertex (3) are tested: the old triangle's closest point `v` was inside it, so its
+    // plane is orthogonal to `v`, and the origin and the new support point (`v . w < |v|^2`,
+    // [`Gjk::advance`] checks progress) lie on the same side of it. (Should rounding put the
+    // origin outside that face, the run reports an intersection, which the convex path
+    // certifies independently or declines.)
+    let faces = [([0, 1, 3], 2), ([0, 2, 3], 1), ([1, 2, 3], 0)];
     let mut out: Option<(Vector3<f64>, Face)> = None;
     let mut inside = true;
     for (f, opposite) in faces {

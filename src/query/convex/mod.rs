@@ -32,6 +32,7 @@
 
 mod ball;
 pub mod gjk;
+mod rim;
 #[cfg(test)]
 mod tests;
 pub mod witness;
@@ -65,7 +66,21 @@ pub struct ConvexAnswer {
     pub point_b: Point3<f64>,
     /// The solids certainly overlap (`point_a = point_b` is inside both).
     pub overlap: bool,
+    /// GJK's simplex updates (0 for the ball path).
     pub iterations: usize,
+    /// Which step found the witnesses.
+    pub method: Method,
+}
+
+/// Which step of the convex path found the answer's witnesses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// A ball against the other solid in the meridian plane ([`ball`]).
+    Ball,
+    /// A rim circle's point nearest to the other solid ([`rim`]).
+    Rim,
+    /// GJK's closest points moved to the surfaces ([`witness`]), or GJK's overlap.
+    Gjk,
 }
 
 /// The distance between the convex solids of trees `ta` (at the identity) and `tb` (at
@@ -123,9 +138,42 @@ pub fn convex_distance(
     }
     let mut g = Gjk::new(support_a, support_b, initial, 1e-14 * scale);
     let mut resumes = 0;
+    let mut rim_tries = 0;
+    let any_creases = !ca.creases.is_empty() || !cb.creases.is_empty();
     loop {
         g.probe();
         let gap = g.gap();
+        if g.iterations() >= 1
+            && gap > target_gap
+            && g.lower() > 0.0
+            && rim_tries < RIM_TRIES
+            && (rim_tries == 0 || any_creases)
+        {
+            let r = g.result();
+            // The first try takes any rim; later ones only rims seen at two azimuths.
+            let creases = [&ca.creases[..], &cb.creases[..]];
+            let found = rims(creases, pos_ab, &r, g.support_points(), rim_tries > 0);
+            if found.iter().any(Option::is_some) {
+                rim_tries += 1;
+                let evaluations = if rim_tries == 1 {
+                    rim::GUESS_EVALUATIONS
+                } else {
+                    rim::MAX_EVALUATIONS
+                };
+                if let Some(answer) = bounds.answer_from_rims(
+                    ta,
+                    tb,
+                    pos_ab,
+                    found,
+                    &support_a,
+                    &support_b,
+                    &r,
+                    evaluations,
+                ) {
+                    return Some(answer);
+                }
+            }
+        }
         if gap <= target_gap {
             if let Some(answer) = bounds.answer(ta, tb, pos_ab, &g.result()) {
                 return Some(answer);
@@ -146,6 +194,69 @@ pub fn convex_distance(
             Status::Stalled => return bounds.answer(ta, tb, pos_ab, &g.result()),
         }
     }
+}
+
+/// How many times a query tries the rim solver ([`rim`]); each try is a few nearest-point
+/// descents, about one or two GJK iterations.
+const RIM_TRIES: usize = 2;
+
+/// The rim solver stops when its predicted improvement is below this fraction of the
+/// requested width (the value's error then hardly eats into the width).
+const RIM_TOLERANCE: f64 = 0.01;
+
+/// Rims in GJK's simplex: a solid all of whose support points in the simplex have the
+/// same meridian point (a crease of its chain, revolved into a rim circle, [`rim`]; or a
+/// single support point) gives that meridian point and the azimuth of GJK's closest point of
+/// that solid, in its own frame.
+fn rims(
+    creases: [&[nalgebra::Point2<f64>]; 2],
+    pos_ab: &Isometry3<f64>,
+    r: &gjk::GjkResult,
+    supports: impl Iterator<Item = (Point3<f64>, Point3<f64>)>,
+    confirmed_only: bool,
+) -> [Option<((f64, f64), f64)>; 2] {
+    let meridian = |p: &Point3<f64>| ((p.x * p.x + p.y * p.y).sqrt(), p.z);
+    // Distinct hull vertices of a chain are far further apart than this; two support points
+    // this close in the meridian are the same vertex lifted to two azimuths (a near-miss
+    // would only give a worse start: the rim's points are surface points all the same).
+    let same = |m: (f64, f64), n: (f64, f64)| (m.0 - n.0).abs() + (m.1 - n.1).abs() <= 1e-9;
+    let mut first: Option<(Point3<f64>, Point3<f64>)> = None;
+    // Per solid: all support points on one meridian point, and two of them apart (a rim
+    // confirmed by two azimuths rather than a single support point).
+    let (mut rim, mut apart) = ([true; 2], [false; 2]);
+    for (a, b) in supports {
+        let b = pos_ab.inverse_transform_point(&b);
+        match first {
+            None => first = Some((a, b)),
+            Some((fa, fb)) => {
+                for (k, (p, f)) in [(a, fa), (b, fb)].into_iter().enumerate() {
+                    rim[k] &= same(meridian(&p), meridian(&f));
+                    apart[k] |= p != f;
+                }
+            }
+        }
+    }
+    let Some((fa, fb)) = first else {
+        return [None, None];
+    };
+    let firsts = [meridian(&fa), meridian(&fb)];
+    let crease = |k: usize| {
+        let m = firsts[k];
+        creases[k]
+            .iter()
+            .any(|c| (c.x - m.0).abs() + (c.y - m.1).abs() <= 1e-9)
+    };
+    let keep = |k: usize| rim[k] && (!confirmed_only || (apart[k] && crease(k)));
+    let azimuth = |p: &Point3<f64>| p.y.atan2(p.x);
+    [
+        keep(0).then(|| (firsts[0], azimuth(&r.point_a))),
+        keep(1).then(|| {
+            (
+                firsts[1],
+                azimuth(&pos_ab.inverse_transform_point(&r.point_b)),
+            )
+        }),
+    ]
 }
 
 /// What an answer must meet (module doc, "Width").
@@ -169,6 +280,7 @@ impl Bounds {
         lower_hulls: f64,
         upper_hulls: f64,
         iterations: usize,
+        method: Method,
     ) -> Option<ConvexAnswer> {
         let value = (point_a - point_b).norm();
         // `value` is a distance between points of the approximating solids, which lie in the
@@ -187,6 +299,51 @@ impl Bounds {
             point_b,
             overlap: false,
             iterations,
+            method,
+        })
+    }
+
+    /// The answer from a rim of A or B ([`rims`], [`rim`]): the rim point nearest to the
+    /// other solid's surface and that surface point, bounded below by the hulls' separation
+    /// along the pair (both supports) and by GJK's bound.
+    #[allow(clippy::too_many_arguments)]
+    fn answer_from_rims(
+        &self,
+        ta: &QueryTree,
+        tb: &QueryTree,
+        pos_ab: &Isometry3<f64>,
+        found: [Option<((f64, f64), f64)>; 2],
+        support_a: &impl Fn(&Vector3<f64>) -> Point3<f64>,
+        support_b: &impl Fn(&Vector3<f64>) -> Point3<f64>,
+        r: &gjk::GjkResult,
+        evaluations: usize,
+    ) -> Option<ConvexAnswer> {
+        let rim = |k: usize| {
+            found[k].map(|(meridian, theta)| rim::Rim {
+                meridian,
+                theta,
+                pose: if k == 0 { pos_ab.inverse() } else { *pos_ab },
+                other: if k == 0 { tb } else { ta },
+            })
+        };
+        let rims = [rim(0), rim(1)];
+        let tolerance = RIM_TOLERANCE * self.requested_width.max(self.rounding);
+        rim::first_accepted(&rims, tolerance, evaluations, |k, x, q| {
+            let (point_a, point_b) = if k == 0 {
+                (x, pos_ab * q)
+            } else {
+                (q, pos_ab * x)
+            };
+            let d = (point_b - point_a).try_normalize(0.0)?;
+            let along = d.dot(&(support_b(&-d) - support_a(&d)));
+            self.finish(
+                point_a,
+                point_b,
+                r.lower.max(along),
+                r.upper,
+                r.iterations,
+                Method::Rim,
+            )
         })
     }
 
@@ -199,7 +356,14 @@ impl Bounds {
         r: &gjk::GjkResult,
     ) -> Option<ConvexAnswer> {
         let (point_a, point_b) = surface_witnesses(ta, tb, pos_ab, r);
-        self.finish(point_a, point_b, r.lower, r.upper, r.iterations)
+        self.finish(
+            point_a,
+            point_b,
+            r.lower,
+            r.upper,
+            r.iterations,
+            Method::Gjk,
+        )
     }
 }
 
@@ -319,5 +483,6 @@ fn certified_overlap(
         point_b: found,
         overlap: true,
         iterations: r.iterations,
+        method: Method::Gjk,
     })
 }
