@@ -155,21 +155,9 @@ pub fn convex_distance(
             let found = rims(creases, pos_ab, &r, g.support_points(), rim_tries > 0);
             if found.iter().any(Option::is_some) {
                 rim_tries += 1;
-                let evaluations = if rim_tries == 1 {
-                    rim::GUESS_EVALUATIONS
-                } else {
-                    rim::MAX_EVALUATIONS
-                };
-                if let Some(answer) = bounds.answer_from_rims(
-                    ta,
-                    tb,
-                    pos_ab,
-                    found,
-                    &support_a,
-                    &support_b,
-                    &r,
-                    evaluations,
-                ) {
+                if let Some(answer) =
+                    bounds.answer_from_rims(ta, tb, pos_ab, found, &support_a, &support_b, &r)
+                {
                     return Some(answer);
                 }
             }
@@ -214,7 +202,7 @@ fn rims(
     r: &gjk::GjkResult,
     supports: impl Iterator<Item = (Point3<f64>, Point3<f64>)>,
     confirmed_only: bool,
-) -> [Option<((f64, f64), f64)>; 2] {
+) -> [Option<((f64, f64), f64, bool)>; 2] {
     let meridian = |p: &Point3<f64>| ((p.x * p.x + p.y * p.y).sqrt(), p.z);
     // Distinct hull vertices of a chain are far further apart than this; two support points
     // this close in the meridian are the same vertex lifted to two azimuths (a near-miss
@@ -249,12 +237,10 @@ fn rims(
     let keep = |k: usize| rim[k] && (!confirmed_only || (apart[k] && crease(k)));
     let azimuth = |p: &Point3<f64>| p.y.atan2(p.x);
     [
-        keep(0).then(|| (firsts[0], azimuth(&r.point_a))),
+        keep(0).then(|| (firsts[0], azimuth(&r.point_a), crease(0))),
         keep(1).then(|| {
-            (
-                firsts[1],
-                azimuth(&pos_ab.inverse_transform_point(&r.point_b)),
-            )
+            let local_b = pos_ab.inverse_transform_point(&r.point_b);
+            (firsts[1], azimuth(&local_b), crease(1))
         }),
     ]
 }
@@ -312,23 +298,29 @@ impl Bounds {
         ta: &QueryTree,
         tb: &QueryTree,
         pos_ab: &Isometry3<f64>,
-        found: [Option<((f64, f64), f64)>; 2],
+        found: [Option<((f64, f64), f64, bool)>; 2],
         support_a: &impl Fn(&Vector3<f64>) -> Point3<f64>,
         support_b: &impl Fn(&Vector3<f64>) -> Point3<f64>,
         r: &gjk::GjkResult,
-        evaluations: usize,
     ) -> Option<ConvexAnswer> {
         let rim = |k: usize| {
-            found[k].map(|(meridian, theta)| rim::Rim {
+            found[k].map(|(meridian, theta, crease)| rim::Rim {
                 meridian,
                 theta,
+                // A crease is worth the secant's few steps; a single support point's
+                // parallel circle (a smooth part) only a guess.
+                evaluations: if crease {
+                    rim::MAX_EVALUATIONS
+                } else {
+                    rim::GUESS_EVALUATIONS
+                },
                 pose: if k == 0 { pos_ab.inverse() } else { *pos_ab },
                 other: if k == 0 { tb } else { ta },
             })
         };
         let rims = [rim(0), rim(1)];
         let tolerance = RIM_TOLERANCE * self.requested_width.max(self.rounding);
-        rim::first_accepted(&rims, tolerance, evaluations, |k, x, q| {
+        rim::first_accepted(&rims, tolerance, |k, x, q| {
             let (point_a, point_b) = if k == 0 {
                 (x, pos_ab * q)
             } else {

@@ -37,6 +37,8 @@ const MAX_STEP: f64 = 0.5;
 pub struct Rim<'a> {
     pub meridian: (f64, f64),
     pub theta: f64,
+    /// Evaluations at most ([`MAX_EVALUATIONS`], [`GUESS_EVALUATIONS`]).
+    pub evaluations: usize,
     pub pose: Isometry3<f64>,
     pub other: &'a QueryTree,
 }
@@ -69,12 +71,7 @@ impl Rim<'_> {
 /// rim's start until the predicted decrease `|f' step|` is below `tolerance`, from the
 /// evaluation `start` at `rim.theta`: the rim point and its nearest surface point of the
 /// other solid (frames as in [`Rim`]). `None` when an evaluation is not finite.
-fn minimise(
-    rim: &Rim,
-    start: Eval,
-    tolerance: f64,
-    evaluations: usize,
-) -> Option<(Point3<f64>, Point3<f64>)> {
+fn minimise(rim: &Rim, start: Eval, tolerance: f64) -> Option<(Point3<f64>, Point3<f64>)> {
     let mut e = start;
     let rho = rim.meridian.0;
     let mut best = (e.n, e.x, e.q);
@@ -85,7 +82,7 @@ fn minimise(
     } else {
         0.0
     };
-    for _ in 1..evaluations {
+    for _ in 1..rim.evaluations {
         // Settled (or a NaN slope): stop.
         let decrease = (e.slope * step).abs();
         if decrease.is_nan() || decrease <= tolerance {
@@ -112,7 +109,6 @@ fn minimise(
 pub fn first_accepted<T>(
     rims: &[Option<Rim>; 2],
     tolerance: f64,
-    evaluations: usize,
     mut accept: impl FnMut(usize, Point3<f64>, Point3<f64>) -> Option<T>,
 ) -> Option<T> {
     let mut starts: [Option<(usize, Eval)>; 2] = [0, 1].map(|k| {
@@ -128,7 +124,7 @@ pub fn first_accepted<T>(
     }
     for (k, start) in starts.into_iter().flatten() {
         let rim = rims[k].as_ref()?;
-        if let Some((x, q)) = minimise(rim, start, tolerance, evaluations) {
+        if let Some((x, q)) = minimise(rim, start, tolerance) {
             if let Some(t) = accept(k, x, q) {
                 return Some(t);
             }
