@@ -8,7 +8,7 @@
 //! towards it are the closest pair, at distance `|q - c| - r`.
 //!
 //! **Certificate.** Nothing above is trusted: the answer is checked as GJK's is
-//! ([`super::Bounds`]). The lower bound is the hulls' separation along the unit direction
+//! (`Bounds` in [`super`]). The lower bound is the hulls' separation along the unit direction
 //! `d` from the ball's centre to `q`, from both solids' exact supports (as a GJK probe's:
 //! `min over H_B of d . x - max over H_A of d . x`, any `d` gives one); the witnesses are
 //! `q` lifted to its azimuth (on the other's approximating surface) and the nearest point of
@@ -22,7 +22,7 @@ use crate::bvh::offset_solid::Core;
 use crate::bvh::QueryTree;
 use nalgebra::{Isometry3, Point3, Vector3};
 
-/// The answer when `ta` or `tb` is a ball and the planar pair fits ([`Bounds`]); `None`
+/// The answer when `ta` or `tb` is a ball and the planar pair fits (`Bounds` in [`super`]); `None`
 /// otherwise (GJK runs). `support_a`, `support_b` are the hulls' supports in A's frame.
 pub(super) fn ball_distance(
     ta: &QueryTree,

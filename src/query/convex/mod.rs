@@ -2,6 +2,18 @@
 //! ([`crate::bvh::convex`]) by GJK on the supports of their approximations' hulls
 //! ([`gjk`]), instead of a traversal.
 //!
+//! **Three ways to a pair, one acceptance.** A ball against the other solid is a planar
+//! question (`ball.rs`: the other's nearest surface point to the centre, in its meridian).
+//! Otherwise GJK runs one step at a time; after its first step, and again when its simplex
+//! shows a rim (every support point of a solid on one crease of its chain, seen at two
+//! azimuths), the rim solver minimises the distance from the rim circle to the other
+//! solid's surface over the azimuth ([`rim`]), where GJK would approximate the circle by
+//! chords for a dozen iterations. Whatever proposes the witnesses (two points of the
+//! approximating surfaces), the answer is accepted by the same test (`Bounds`): a lower
+//! bound of `d(H_A, H_B)`, GJK's or the hulls' separation along the witnesses' direction
+//! from both exact supports (any direction gives one), within the requested width of the
+//! witnesses' distance, and the interval within the allowed width.
+//!
 //! **Certified interval.** Let `H_A`, `H_B` be the hulls of the approximating surfaces and
 //! `h_A`, `h_B` their two-sided Hausdorff bounds to the true solids
 //! ([`crate::bvh::convex::ConvexHullData::error`]: the tree's eps, the certificate's dent, the hull's rounding).
@@ -12,7 +24,7 @@
 //! both hulls that the tree's containment test puts inside both true solids with a margin
 //! above eps and slack ([`crate::bvh::containment`]).
 //!
-//! **Witnesses and value.** GJK's closest points are convex combinations of support points,
+//! **Witnesses and value (GJK's).** GJK's closest points are convex combinations of support points,
 //! inside curved hulls by up to the gap `u - l`. Each is moved to the nearest point of its
 //! approximating surface ([`witness`]), within the tree's eps of the true surface; the value
 //! is their distance. Both points lie in the hulls, so `l <= d(H_A, H_B) <=` value, and the
@@ -32,7 +44,7 @@
 
 mod ball;
 pub mod gjk;
-mod rim;
+pub mod rim;
 #[cfg(test)]
 mod tests;
 pub mod witness;
@@ -75,7 +87,7 @@ pub struct ConvexAnswer {
 /// Which step of the convex path found the answer's witnesses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
-    /// A ball against the other solid in the meridian plane ([`ball`]).
+    /// A ball against the other solid in the meridian plane (`ball.rs`).
     Ball,
     /// A rim circle's point nearest to the other solid ([`rim`]).
     Rim,

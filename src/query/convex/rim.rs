@@ -5,7 +5,7 @@
 //! chain is curved only along it. When the closest points lie on a rim, GJK's simplex
 //! approximates the circle by chords and its bounds close slowly (a dozen iterations for
 //! a gap of 1e-4 of the size). The convex path therefore detects a rim in GJK's simplex
-//! (every support point of that solid at the same meridian point, [`super::rims`]) and
+//! (every support point of that solid at the same meridian point, `rims` in [`super`]) and
 //! minimises, over the rim's azimuth `theta`, the distance from the rim point `x(theta)` to
 //! the other solid's approximating surface, which is planar in the other's meridian
 //! ([`super::witness`]): `f(theta) = |x(theta) - q(theta)|`, `f'(theta) = x'(theta) . (x -
@@ -14,7 +14,7 @@
 //!
 //! Nothing here is trusted: the pair found is two surface points, and the convex path
 //! accepts it only with a lower bound from both supports that fits the width
-//! ([`super::Bounds`]).
+//! (`Bounds` in [`super`]).
 
 use super::witness::nearest_surface_point;
 use crate::bvh::QueryTree;
@@ -105,7 +105,7 @@ fn minimise(rim: &Rim, start: Eval, tolerance: f64) -> Option<(Point3<f64>, Poin
 }
 
 /// The rims given, the one whose start point is nearer to the other solid first, each
-/// minimised ([`minimise`]) and handed to `accept` (with its index) until one is accepted.
+/// minimised (`minimise`) and handed to `accept` (with its index) until one is accepted.
 pub fn first_accepted<T>(
     rims: &[Option<Rim>; 2],
     tolerance: f64,
