@@ -5,8 +5,7 @@
 //! **Three ways to a pair, one acceptance.** A ball against the other solid is a planar
 //! question (`ball.rs`: the other's nearest surface point to the centre, in its meridian).
 //! Otherwise GJK runs one step at a time; after its first step, and again when its simplex
-//! shows a rim (every support point of a solid on one crease of its chain, seen at two
-//! azimuths), the rim solver minimises the distance from the rim circle to the other
+//! shows a rim (every support point of a solid on one crease of its chain), the rim solver minimises the distance from the rim circle to the other
 //! solid's surface over the azimuth ([`rim`]), where GJK would approximate the circle by
 //! chords for a dozen iterations. Whatever proposes the witnesses (two points of the
 //! approximating surfaces), the answer is accepted by the same test (`Bounds`): a lower
@@ -155,18 +154,29 @@ pub fn convex_distance(
     loop {
         g.probe();
         let gap = g.gap();
-        if g.iterations() >= 1
-            && gap > target_gap
-            && g.lower() > 0.0
-            && rim_tries < RIM_TRIES
-            && (rim_tries == 0 || any_creases)
-        {
-            let r = g.result();
-            // The first try takes any rim; later ones only rims seen at two azimuths.
+        // The rim solver: after GJK's first step (a crease or, for capsule-like solids, a
+        // guess), then whenever a solid's simplex points all lie on one crease.
+        let first = g.iterations() == 1;
+        if (first || any_creases) && rim_tries < RIM_TRIES && gap > target_gap && g.lower() > 0.0 {
             let creases = [&ca.creases[..], &cb.creases[..]];
-            let found = rims(creases, pos_ab, &r, g.support_points(), rim_tries > 0);
-            if found.iter().any(Option::is_some) {
+            // A single support point off the creases is a guess worth trying only where GJK
+            // started along the exact direction: solids whose widest points span a segment
+            // of the axis (capsules; the start is the closest points of those segments).
+            let guesses = [ca, cb].map(|c| c.support.core[1] > c.support.core[0]);
+            let rims = rims(creases, guesses, pos_ab, g.support_points(), first);
+            if rims.iter().any(Option::is_some) {
                 rim_tries += 1;
+                // Start from the azimuths of GJK's closest points.
+                let r = g.result();
+                let local_b = pos_ab.inverse_transform_point(&r.point_b);
+                let azimuths = [r.point_a.y.atan2(r.point_a.x), local_b.y.atan2(local_b.x)];
+                let found = [0, 1].map(|k| {
+                    rims[k].map(|(meridian, crease)| RimStart {
+                        meridian,
+                        theta: azimuths[k],
+                        crease,
+                    })
+                });
                 if let Some(answer) =
                     bounds.answer_from_rims(ta, tb, pos_ab, found, &support_a, &support_b, &r)
                 {
@@ -205,56 +215,56 @@ const RIM_TRIES: usize = 2;
 const RIM_TOLERANCE: f64 = 0.01;
 
 /// Rims in GJK's simplex: a solid all of whose support points in the simplex have the
-/// same meridian point (a crease of its chain, revolved into a rim circle, [`rim`]; or a
-/// single support point) gives that meridian point and the azimuth of GJK's closest point of
-/// that solid, in its own frame.
+/// same meridian point, one of its `creases` (a rim circle, [`rim`]) or, after GJK's first
+/// step and where `guesses` allows, any point (its parallel circle), gives that meridian
+/// point (its own frame) and whether it is a crease.
 fn rims(
     creases: [&[nalgebra::Point2<f64>]; 2],
+    guesses: [bool; 2],
     pos_ab: &Isometry3<f64>,
-    r: &gjk::GjkResult,
     supports: impl Iterator<Item = (Point3<f64>, Point3<f64>)>,
-    confirmed_only: bool,
-) -> [Option<((f64, f64), f64, bool)>; 2] {
+    first_step: bool,
+) -> [Option<((f64, f64), bool)>; 2] {
     let meridian = |p: &Point3<f64>| ((p.x * p.x + p.y * p.y).sqrt(), p.z);
     // Distinct hull vertices of a chain are far further apart than this; two support points
     // this close in the meridian are the same vertex lifted to two azimuths (a near-miss
     // would only give a worse start: the rim's points are surface points all the same).
     let same = |m: (f64, f64), n: (f64, f64)| (m.0 - n.0).abs() + (m.1 - n.1).abs() <= 1e-9;
-    let mut first: Option<(Point3<f64>, Point3<f64>)> = None;
-    // Per solid: all support points on one meridian point, and two of them apart (a rim
-    // confirmed by two azimuths rather than a single support point).
-    let (mut rim, mut apart) = ([true; 2], [false; 2]);
+    let mut first: Option<[(f64, f64); 2]> = None;
+    let mut rim = [true; 2];
     for (a, b) in supports {
-        let b = pos_ab.inverse_transform_point(&b);
+        let m = [meridian(&a), meridian(&pos_ab.inverse_transform_point(&b))];
         match first {
-            None => first = Some((a, b)),
-            Some((fa, fb)) => {
-                for (k, (p, f)) in [(a, fa), (b, fb)].into_iter().enumerate() {
-                    rim[k] &= same(meridian(&p), meridian(&f));
-                    apart[k] |= p != f;
+            None => first = Some(m),
+            Some(f) => {
+                for k in 0..2 {
+                    rim[k] &= same(m[k], f[k]);
                 }
             }
         }
     }
-    let Some((fa, fb)) = first else {
+    let Some(firsts) = first else {
         return [None, None];
     };
-    let firsts = [meridian(&fa), meridian(&fb)];
     let crease = |k: usize| {
         let m = firsts[k];
         creases[k]
             .iter()
             .any(|c| (c.x - m.0).abs() + (c.y - m.1).abs() <= 1e-9)
     };
-    let keep = |k: usize| rim[k] && (!confirmed_only || (apart[k] && crease(k)));
-    let azimuth = |p: &Point3<f64>| p.y.atan2(p.x);
-    [
-        keep(0).then(|| (firsts[0], azimuth(&r.point_a), crease(0))),
-        keep(1).then(|| {
-            let local_b = pos_ab.inverse_transform_point(&r.point_b);
-            (firsts[1], azimuth(&local_b), crease(1))
-        }),
-    ]
+    [0, 1].map(|k| {
+        let on_crease = crease(k);
+        (rim[k] && (on_crease || (first_step && guesses[k]))).then_some((firsts[k], on_crease))
+    })
+}
+
+/// Where the rim solver starts on one solid ([`rims`]): the meridian point, the azimuth of
+/// GJK's closest point, whether the point is a crease.
+#[derive(Debug, Clone, Copy)]
+struct RimStart {
+    meridian: (f64, f64),
+    theta: f64,
+    crease: bool,
 }
 
 /// What an answer must meet (module doc, "Width").
@@ -310,25 +320,31 @@ impl Bounds {
         ta: &QueryTree,
         tb: &QueryTree,
         pos_ab: &Isometry3<f64>,
-        found: [Option<((f64, f64), f64, bool)>; 2],
+        found: [Option<RimStart>; 2],
         support_a: &impl Fn(&Vector3<f64>) -> Point3<f64>,
         support_b: &impl Fn(&Vector3<f64>) -> Point3<f64>,
         r: &gjk::GjkResult,
     ) -> Option<ConvexAnswer> {
         let rim = |k: usize| {
-            found[k].map(|(meridian, theta, crease)| rim::Rim {
-                meridian,
-                theta,
-                // A crease is worth the secant's few steps; a single support point's
-                // parallel circle (a smooth part) only a guess.
-                evaluations: if crease {
-                    rim::MAX_EVALUATIONS
-                } else {
-                    rim::GUESS_EVALUATIONS
+            found[k].map(
+                |RimStart {
+                     meridian,
+                     theta,
+                     crease,
+                 }| rim::Rim {
+                    meridian,
+                    theta,
+                    // A crease is worth the secant's few steps; a single support point's
+                    // parallel circle (a smooth part) only a guess.
+                    evaluations: if crease {
+                        rim::MAX_EVALUATIONS
+                    } else {
+                        rim::GUESS_EVALUATIONS
+                    },
+                    pose: if k == 0 { pos_ab.inverse() } else { *pos_ab },
+                    other: if k == 0 { tb } else { ta },
                 },
-                pose: if k == 0 { pos_ab.inverse() } else { *pos_ab },
-                other: if k == 0 { tb } else { ta },
-            })
+            )
         };
         let rims = [rim(0), rim(1)];
         let tolerance = RIM_TOLERANCE * self.requested_width.max(self.rounding);

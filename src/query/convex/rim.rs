@@ -20,7 +20,7 @@ use super::witness::nearest_surface_point;
 use crate::bvh::QueryTree;
 use nalgebra::{Isometry3, Point3, Vector3};
 
-/// Evaluations at most on a rim seen at two azimuths (each one nearest-point descent and a
+/// Evaluations at most on a crease's rim (each one nearest-point descent and a
 /// `sin_cos`): the secant converges in two or three.
 pub const MAX_EVALUATIONS: usize = 5;
 
