@@ -157,7 +157,9 @@ fn descend(
 ) {
     let n = &tree.nodes[id as usize];
     if let Some((d, _)) = *best {
-        if (m - n.bound.center).norm() - n.bound.radius > d {
+        // `|m - c| - r > d`, compared squared (both sides non-negative): no square root.
+        let reach = d + n.bound.radius;
+        if (m - n.bound.center).norm_squared() > reach * reach {
             return;
         }
     }
@@ -170,7 +172,14 @@ fn descend(
         }
         return;
     }
-    let [first, second] = tree.children_nearer_first(id, m);
+    // Nearer child first (as `QueryTree::children_nearer_first`, by squared distances).
+    let [c0, c1] = n.children;
+    let dist2 = |k: u32| (m - tree.nodes[k as usize].bound.center).norm_squared();
+    let (first, second) = if dist2(c0) <= dist2(c1) {
+        (c0, c1)
+    } else {
+        (c1, c0)
+    };
     descend(tree, pieces, first, m, best);
     descend(tree, pieces, second, m, best);
 }
