@@ -1,7 +1,8 @@
 //! Convex solids of revolution: a certificate that the solid is convex, decided on its
 //! exact profile ([`convexity`]), and the support function of the convex hull of its
 //! approximating surface ([`support`]), which the query's convex fast path
-//! ([`crate::query::convex`]) runs GJK on.
+//! ([`crate::query::convex`]) runs GJK on, and the chain's pieces kept for its nearest-point
+//! questions ([`nearest`]).
 //!
 //! **Error bound.** The hull of the tree's approximating surface `H` and the true solid `S`
 //! are within [`ConvexHullData::error`] of each other (two-sided Hausdorff distance between
@@ -12,11 +13,13 @@
 
 pub mod convexity;
 pub mod exact;
+pub mod nearest;
 pub mod support;
 
 use super::QueryTree;
 use crate::profile::Profile;
 pub use convexity::{certify_convex, ConvexProfile};
+pub use nearest::MeridianPiece;
 pub use support::SupportTable;
 
 /// What the convex fast path needs of a solid certified convex.
@@ -29,6 +32,14 @@ pub struct ConvexHullData {
     /// Two-sided Hausdorff bound between the hull and the true solid (module doc): the
     /// tree's eps, the certificate's dent and the hull's rounding.
     pub error: f64,
+    /// The tree's pieces (`tree.patches`, same order) for nearest points in the meridian
+    /// plane ([`nearest`]).
+    pub pieces: Vec<MeridianPiece>,
+    /// The chain's creases (joints where the tangent turns, and ends on the axis that are
+    /// not flat: a cone's apex): the meridian points that revolve into rim circles (or
+    /// points), where the hull is curved along the rim only ([`crate::query::convex`]'s rim
+    /// solver).
+    pub creases: Vec<nalgebra::Point2<f64>>,
 }
 
 impl ConvexHullData {
@@ -42,6 +53,35 @@ impl ConvexHullData {
             certificate,
             support,
             error,
+            pieces: nearest::meridian_pieces(tree),
+            creases: creases(&tree.chain),
         })
     }
+}
+
+/// Turn (radians, as the sine of the angle between unit tangents) above which a joint of the
+/// chain is a crease: biarc joints are tangent up to rounding (1e-12 and below), the
+/// profile's creases turn by whole angles.
+const CREASE_TURN: f64 = 1e-6;
+
+/// The chain's creases: every joint whose tangents differ, and each end whose tangent is
+/// not orthogonal to the axis (a smooth pole or a flat disk's centre is no crease).
+fn creases(chain: &[crate::bvh::ProfileArc]) -> Vec<nalgebra::Point2<f64>> {
+    let mut out = Vec::new();
+    if let (Some(first), Some(last)) = (chain.first(), chain.last()) {
+        if first.tangent_at(0.0).y.abs() > CREASE_TURN {
+            out.push(first.start());
+        }
+        for w in chain.windows(2) {
+            let (t0, t1) = (w[0].tangent_at(1.0), w[1].tangent_at(0.0));
+            let sine = (t0.x * t1.y - t0.y * t1.x).abs();
+            if sine > CREASE_TURN || t0.dot(&t1) < 0.0 {
+                out.push(w[0].end());
+            }
+        }
+        if last.tangent_at(1.0).y.abs() > CREASE_TURN {
+            out.push(last.end());
+        }
+    }
+    out
 }

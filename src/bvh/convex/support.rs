@@ -233,7 +233,8 @@ impl SupportTable {
         let u = (d.x * d.x + d.y * d.y).sqrt();
         if u > 0.0 {
             let p = self.support_2d(u, d.z);
-            Point3::new(p.x * (d.x / u), p.x * (d.y / u), p.y)
+            let k = p.x / u;
+            Point3::new(k * d.x, k * d.y, p.y)
         } else {
             let p = self.support_2d(0.0, d.z);
             Point3::new(p.x, 0.0, p.y)

@@ -64,81 +64,184 @@ pub fn gjk(
     target_gap: f64,
     tiny: f64,
 ) -> GjkResult {
-    let vertex = |d: &Vector3<f64>| {
-        let a = support_a(d);
-        let b = support_b(&-d);
-        Vertex { w: a - b, a, b }
-    };
-    let mut v = if initial.norm_squared() > 0.0 {
-        initial
-    } else {
-        Vector3::x()
-    };
-    let zero = Vertex {
-        w: Vector3::zeros(),
-        a: Point3::origin(),
-        b: Point3::origin(),
-    };
-    let mut simplex = [zero; 4];
-    let mut len = 0;
-    let mut lambdas = [0.0; 4];
-    let mut lower = f64::NEG_INFINITY;
-    let mut upper = f64::INFINITY;
-    let mut intersect = false;
-    let mut iterations = 0;
-    while iterations < MAX_ITERATIONS {
-        iterations += 1;
-        let vv = v.norm_squared();
-        let norm = vv.sqrt();
-        let new = vertex(&-v);
-        let vw = v.dot(&new.w);
-        lower = lower.max(vw / norm);
-        if len > 0 && (upper - lower <= target_gap || vv - vw <= NO_PROGRESS_REL * vv) {
+    let mut g = Gjk::new(support_a, support_b, initial, tiny);
+    loop {
+        g.probe();
+        if g.len > 0 && g.gap() <= target_gap {
             break;
         }
-        if simplex[..len].iter().any(|s| s.w == new.w) {
+        if g.advance() != Status::Running {
             break;
         }
-        simplex[len] = new;
-        len += 1;
-        let (closest, face) = closest_to_origin(&simplex[..len]);
-        let old = simplex;
-        len = face.len;
-        for k in 0..len {
-            simplex[k] = old[face.idx[k]];
-            lambdas[k] = face.weight[k];
-        }
-        v = closest;
-        upper = v.norm();
+    }
+    g.result()
+}
 
-        if upper <= tiny || len == 4 {
-            intersect = true;
-            break;
+/// Where a [`Gjk`] run stands after [`Gjk::advance`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// The simplex moved closer to the origin; another probe may narrow the gap.
+    Running,
+    /// The last support point brought no progress (the gap is at rounding level), repeated
+    /// a vertex, or the run reached [`MAX_ITERATIONS`].
+    Stalled,
+    /// The simplex reached the origin: the sets intersect up to rounding.
+    Intersect,
+}
+
+/// GJK one step at a time, so that the caller can test its own acceptance between steps
+/// (the convex path moves the closest points to the surfaces and stops as soon as they fit).
+/// [`Gjk::probe`] evaluates the support point for the current `v` and raises the lower
+/// bound; [`Gjk::advance`] adds that point to the simplex and moves `v`.
+pub struct Gjk<SA, SB> {
+    support_a: SA,
+    support_b: SB,
+    v: Vector3<f64>,
+    simplex: [Vertex; 4],
+    lambdas: [f64; 4],
+    len: usize,
+    /// The support point for the current `v` (after a probe).
+    new: Option<Vertex>,
+    lower: f64,
+    upper: f64,
+    tiny: f64,
+    iterations: usize,
+    intersect: bool,
+}
+
+impl<SA, SB> Gjk<SA, SB>
+where
+    SA: Fn(&Vector3<f64>) -> Point3<f64>,
+    SB: Fn(&Vector3<f64>) -> Point3<f64>,
+{
+    /// A run from direction `initial` (a guess of `p_A - p_B`); `tiny` as for [`gjk`].
+    pub fn new(support_a: SA, support_b: SB, initial: Vector3<f64>, tiny: f64) -> Self {
+        let zero = Vertex {
+            w: Vector3::zeros(),
+            a: Point3::origin(),
+            b: Point3::origin(),
+        };
+        Gjk {
+            support_a,
+            support_b,
+            v: if initial.norm_squared() > 0.0 {
+                initial
+            } else {
+                Vector3::x()
+            },
+            simplex: [zero; 4],
+            lambdas: [0.0; 4],
+            len: 0,
+            new: None,
+            lower: f64::NEG_INFINITY,
+            upper: f64::INFINITY,
+            tiny,
+            iterations: 0,
+            intersect: false,
         }
     }
-    let (mut pa, mut pb) = (Vector3::zeros(), Vector3::zeros());
-    for (s, &l) in simplex[..len].iter().zip(&lambdas) {
-        pa += s.a.coords * l;
-        pb += s.b.coords * l;
+
+    /// The support point of `A - B` in direction `-v` (once per `v`), and the separation
+    /// along `v` it proves.
+    pub fn probe(&mut self) {
+        if self.new.is_some() {
+            return;
+        }
+        let d = -self.v;
+        let a = (self.support_a)(&d);
+        let b = (self.support_b)(&-d);
+        let new = Vertex { w: a - b, a, b };
+        let vv = self.v.norm_squared();
+        self.lower = self.lower.max(self.v.dot(&new.w) / vv.sqrt());
+        self.new = Some(new);
     }
-    let single =
-        |f: fn(&Vertex) -> Point3<f64>| simplex[..len].iter().all(|s| f(s) == f(&simplex[0]));
-    let (single_a, single_b) = (single(|s| s.a), single(|s| s.b));
-    if single_a {
-        pa = simplex[0].a.coords;
+
+    /// `upper - lower` (infinite before the first [`Gjk::advance`]).
+    pub fn gap(&self) -> f64 {
+        self.upper - self.lower
     }
-    if single_b {
-        pb = simplex[0].b.coords;
+
+    /// Simplex updates so far.
+    pub fn iterations(&self) -> usize {
+        self.iterations
     }
-    GjkResult {
-        lower,
-        upper: (pa - pb).norm(),
-        point_a: Point3::from(pa),
-        point_b: Point3::from(pb),
-        intersect,
-        single_a,
-        single_b,
-        iterations,
+
+    /// The certified lower bound so far (may be negative).
+    pub fn lower(&self) -> f64 {
+        self.lower
+    }
+
+    /// Adds the probed support point to the simplex and moves `v` to the simplex's point
+    /// nearest the origin (probes first if needed).
+    pub fn advance(&mut self) -> Status {
+        if self.intersect {
+            return Status::Intersect;
+        }
+        self.probe();
+        let new = self.new.expect("probed");
+        if self.iterations >= MAX_ITERATIONS {
+            return Status::Stalled;
+        }
+        let vv = self.v.norm_squared();
+        let vw = self.v.dot(&new.w);
+        let len = self.len;
+        if (len > 0 && vv - vw <= NO_PROGRESS_REL * vv)
+            || self.simplex[..len].iter().any(|s| s.w == new.w)
+        {
+            return Status::Stalled;
+        }
+        self.iterations += 1;
+        self.new = None;
+        self.simplex[len] = new;
+        let (closest, face) = closest_to_origin(&self.simplex[..len + 1]);
+        let old = self.simplex;
+        self.len = face.len;
+        for k in 0..face.len {
+            self.simplex[k] = old[face.idx[k]];
+            self.lambdas[k] = face.weight[k];
+        }
+        self.v = closest;
+        self.upper = closest.norm();
+        if self.upper <= self.tiny || self.len == 4 {
+            self.intersect = true;
+            return Status::Intersect;
+        }
+        Status::Running
+    }
+
+    /// The simplex's support points of A and of B (as many as its vertices).
+    pub fn support_points(&self) -> impl Iterator<Item = (Point3<f64>, Point3<f64>)> + '_ {
+        self.simplex[..self.len].iter().map(|s| (s.a, s.b))
+    }
+
+    /// The closest points so far and the bounds.
+    pub fn result(&self) -> GjkResult {
+        let simplex = &self.simplex[..self.len];
+        let (mut pa, mut pb) = (Vector3::zeros(), Vector3::zeros());
+        for (s, &l) in simplex.iter().zip(&self.lambdas) {
+            pa += s.a.coords * l;
+            pb += s.b.coords * l;
+        }
+        let single = |f: fn(&Vertex) -> Point3<f64>| {
+            !simplex.is_empty() && simplex.iter().all(|s| f(s) == f(&simplex[0]))
+        };
+        let (single_a, single_b) = (single(|s| s.a), single(|s| s.b));
+        if single_a {
+            pa = simplex[0].a.coords;
+        }
+        if single_b {
+            pb = simplex[0].b.coords;
+        }
+        GjkResult {
+            lower: self.lower,
+            upper: (pa - pb).norm(),
+            point_a: Point3::from(pa),
+            point_b: Point3::from(pb),
+            intersect: self.intersect,
+            single_a,
+            single_b,
+            iterations: self.iterations,
+        }
     }
 }
 
@@ -252,13 +355,13 @@ fn best<const N: usize>(options: [(Vector3<f64>, Face); N]) -> (Vector3<f64>, Fa
 fn tetrahedron(s: &[Vertex]) -> (Vector3<f64>, Face) {
     let p = [s[0].w, s[1].w, s[2].w, s[3].w];
     // Faces with the opposite vertex; the origin is outside a face when it and the opposite
-    // vertex lie on different sides of the face's plane.
-    let faces = [
-        ([0, 1, 2], 3),
-        ([0, 1, 3], 2),
-        ([0, 2, 3], 1),
-        ([1, 2, 3], 0),
-    ];
+    // vertex lie on different sides of the face's plane. Only the faces through the newest
+    // vertex (3) are tested: the old triangle's closest point `v` was inside it, so its
+    // plane is orthogonal to `v`, and the origin and the new support point (`v . w < |v|^2`,
+    // [`Gjk::advance`] checks progress) lie on the same side of it. (Should rounding put the
+    // origin outside that face, the run reports an intersection, which the convex path
+    // certifies independently or declines.)
+    let faces = [([0, 1, 3], 2), ([0, 2, 3], 1), ([1, 2, 3], 0)];
     let mut out: Option<(Vector3<f64>, Face)> = None;
     let mut inside = true;
     for (f, opposite) in faces {

@@ -2,6 +2,17 @@
 //! ([`crate::bvh::convex`]) by GJK on the supports of their approximations' hulls
 //! ([`gjk`]), instead of a traversal.
 //!
+//! **Three ways to a pair, one acceptance.** A ball against the other solid is a planar
+//! question (`ball.rs`: the other's nearest surface point to the centre, in its meridian).
+//! Otherwise GJK runs one step at a time; after its first step, and again when its simplex
+//! shows a rim (every support point of a solid on one crease of its chain), the rim solver minimises the distance from the rim circle to the other
+//! solid's surface over the azimuth ([`rim`]), where GJK would approximate the circle by
+//! chords for a dozen iterations. Whatever proposes the witnesses (two points of the
+//! approximating surfaces), the answer is accepted by the same test (`Bounds`): a lower
+//! bound of `d(H_A, H_B)`, GJK's or the hulls' separation along the witnesses' direction
+//! from both exact supports (any direction gives one), within the requested width of the
+//! witnesses' distance, and the interval within the allowed width.
+//!
 //! **Certified interval.** Let `H_A`, `H_B` be the hulls of the approximating surfaces and
 //! `h_A`, `h_B` their two-sided Hausdorff bounds to the true solids
 //! ([`crate::bvh::convex::ConvexHullData::error`]: the tree's eps, the certificate's dent, the hull's rounding).
@@ -12,7 +23,7 @@
 //! both hulls that the tree's containment test puts inside both true solids with a margin
 //! above eps and slack ([`crate::bvh::containment`]).
 //!
-//! **Witnesses and value.** GJK's closest points are convex combinations of support points,
+//! **Witnesses and value (GJK's).** GJK's closest points are convex combinations of support points,
 //! inside curved hulls by up to the gap `u - l`. Each is moved to the nearest point of its
 //! approximating surface ([`witness`]), within the tree's eps of the true surface; the value
 //! is their distance. Both points lie in the hulls, so `l <= d(H_A, H_B) <=` value, and the
@@ -30,7 +41,9 @@
 //! there, or when the hulls meet without a certified common point, the path declines and the
 //! query traverses.
 
+mod ball;
 pub mod gjk;
+pub mod rim;
 #[cfg(test)]
 mod tests;
 pub mod witness;
@@ -39,7 +52,7 @@ use crate::bvh::containment::point_in_solid;
 use crate::bvh::convex::ConvexHullData;
 use crate::bvh::QueryTree;
 use crate::tolerances::SETTLE_REL;
-use gjk::gjk;
+use gjk::{Gjk, Status};
 use nalgebra::{Isometry3, Point3, Vector3};
 use witness::nearest_surface_point;
 
@@ -64,7 +77,21 @@ pub struct ConvexAnswer {
     pub point_b: Point3<f64>,
     /// The solids certainly overlap (`point_a = point_b` is inside both).
     pub overlap: bool,
+    /// GJK's simplex updates (0 for the ball path).
     pub iterations: usize,
+    /// Which step found the witnesses.
+    pub method: Method,
+}
+
+/// Which step of the convex path found the answer's witnesses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// A ball against the other solid in the meridian plane (`ball.rs`).
+    Ball,
+    /// A rim circle's point nearest to the other solid ([`rim`]).
+    Rim,
+    /// GJK's closest points moved to the surfaces ([`witness`]), or GJK's overlap.
+    Gjk,
 }
 
 /// The distance between the convex solids of trees `ta` (at the identity) and `tb` (at
@@ -105,49 +132,259 @@ pub fn convex_distance(
     // surfaces usually shorten the pair (they remove the depths behind the supporting
     // planes), else GJK resumes with a quarter of the gap.
     let mut target_gap = (allowed - 2.0 * widen).min(requested_width - dents + rounding);
-    let mut start = initial;
-    let mut best_lower = f64::NEG_INFINITY;
-    for _ in 0..=GJK_RESUMES {
-        let r = gjk(
-            |d| ca.support.support(d),
-            |d| rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift,
-            start,
-            target_gap,
-            1e-14 * scale,
-        );
-        if r.intersect {
-            return certified_overlap(ta, tb, pos_ab, slack, &r, centers);
+    let support_a = |d: &Vector3<f64>| ca.support.support(d);
+    let support_b = |d: &Vector3<f64>| {
+        rotation * cb.support.support(&rotation.inverse_transform_vector(d)) + shift
+    };
+    let bounds = Bounds {
+        widen,
+        requested_width,
+        rounding,
+        allowed,
+    };
+    if ta.offset.is_some() || tb.offset.is_some() {
+        if let Some(answer) = ball::ball_distance(ta, tb, pos_ab, &bounds, support_a, support_b) {
+            return Some(answer);
         }
-        best_lower = best_lower.max(r.lower);
-        let (point_a, point_b) = surface_witnesses(ta, tb, pos_ab, &r);
+    }
+    let mut g = Gjk::new(support_a, support_b, initial, 1e-14 * scale);
+    let mut resumes = 0;
+    let mut rim_tries = 0;
+    let any_creases = !ca.creases.is_empty() || !cb.creases.is_empty();
+    loop {
+        g.probe();
+        let gap = g.gap();
+        // The rim solver: after GJK's first step (a crease or, for capsule-like solids, a
+        // guess), then whenever a solid's simplex points all lie on one crease.
+        let first = g.iterations() == 1;
+        if (first || any_creases) && rim_tries < RIM_TRIES && gap > target_gap && g.lower() > 0.0 {
+            let creases = [&ca.creases[..], &cb.creases[..]];
+            // A single support point off the creases is a guess worth trying only where GJK
+            // started along the exact direction: solids whose widest points span a segment
+            // of the axis (capsules; the start is the closest points of those segments).
+            let guesses = [ca, cb].map(|c| c.support.core[1] > c.support.core[0]);
+            let rims = rims(creases, guesses, pos_ab, g.support_points(), first);
+            if rims.iter().any(Option::is_some) {
+                rim_tries += 1;
+                // Start from the azimuths of GJK's closest points.
+                let r = g.result();
+                let local_b = pos_ab.inverse_transform_point(&r.point_b);
+                let azimuths = [r.point_a.y.atan2(r.point_a.x), local_b.y.atan2(local_b.x)];
+                let found = [0, 1].map(|k| {
+                    rims[k].map(|(meridian, crease)| RimStart {
+                        meridian,
+                        theta: azimuths[k],
+                        crease,
+                    })
+                });
+                if let Some(answer) =
+                    bounds.answer_from_rims(ta, tb, pos_ab, found, &support_a, &support_b, &r)
+                {
+                    return Some(answer);
+                }
+            }
+        }
+        if gap <= target_gap {
+            if let Some(answer) = bounds.answer(ta, tb, pos_ab, &g.result()) {
+                return Some(answer);
+            }
+            // The witnesses moved to the surfaces leave the value or the interval outside
+            // the width: go on to a quarter of the gap.
+            if resumes == GJK_RESUMES || gap.is_nan() || gap <= 0.0 {
+                return None;
+            }
+            resumes += 1;
+            target_gap = 0.25 * gap;
+        }
+        match g.advance() {
+            Status::Running => {}
+            Status::Intersect => {
+                return certified_overlap(ta, tb, pos_ab, slack, &g.result(), centers)
+            }
+            Status::Stalled => return bounds.answer(ta, tb, pos_ab, &g.result()),
+        }
+    }
+}
+
+/// How many times a query tries the rim solver ([`rim`]); each try is a few nearest-point
+/// descents, about one or two GJK iterations.
+const RIM_TRIES: usize = 2;
+
+/// The rim solver stops when its predicted improvement is below this fraction of the
+/// requested width (the value's error then hardly eats into the width).
+const RIM_TOLERANCE: f64 = 0.01;
+
+/// Rims in GJK's simplex: a solid all of whose support points in the simplex have the
+/// same meridian point, one of its `creases` (a rim circle, [`rim`]) or, after GJK's first
+/// step and where `guesses` allows, any point (its parallel circle), gives that meridian
+/// point (its own frame) and whether it is a crease.
+fn rims(
+    creases: [&[nalgebra::Point2<f64>]; 2],
+    guesses: [bool; 2],
+    pos_ab: &Isometry3<f64>,
+    supports: impl Iterator<Item = (Point3<f64>, Point3<f64>)>,
+    first_step: bool,
+) -> [Option<((f64, f64), bool)>; 2] {
+    let meridian = |p: &Point3<f64>| ((p.x * p.x + p.y * p.y).sqrt(), p.z);
+    // Distinct hull vertices of a chain are far further apart than this; two support points
+    // this close in the meridian are the same vertex lifted to two azimuths (a near-miss
+    // would only give a worse start: the rim's points are surface points all the same).
+    let same = |m: (f64, f64), n: (f64, f64)| (m.0 - n.0).abs() + (m.1 - n.1).abs() <= 1e-9;
+    let mut first: Option<[(f64, f64); 2]> = None;
+    let mut rim = [true; 2];
+    for (a, b) in supports {
+        let m = [meridian(&a), meridian(&pos_ab.inverse_transform_point(&b))];
+        match first {
+            None => first = Some(m),
+            Some(f) => {
+                for k in 0..2 {
+                    rim[k] &= same(m[k], f[k]);
+                }
+            }
+        }
+    }
+    let Some(firsts) = first else {
+        return [None, None];
+    };
+    let crease = |k: usize| {
+        let m = firsts[k];
+        creases[k]
+            .iter()
+            .any(|c| (c.x - m.0).abs() + (c.y - m.1).abs() <= 1e-9)
+    };
+    [0, 1].map(|k| {
+        let on_crease = crease(k);
+        (rim[k] && (on_crease || (first_step && guesses[k]))).then_some((firsts[k], on_crease))
+    })
+}
+
+/// Where the rim solver starts on one solid ([`rims`]): the meridian point, the azimuth of
+/// GJK's closest point, whether the point is a crease.
+#[derive(Debug, Clone, Copy)]
+struct RimStart {
+    meridian: (f64, f64),
+    theta: f64,
+    crease: bool,
+}
+
+/// What an answer must meet (module doc, "Width").
+struct Bounds {
+    /// The hulls' errors, the slack and GJK's rounding.
+    widen: f64,
+    requested_width: f64,
+    rounding: f64,
+    /// The widest interval allowed.
+    allowed: f64,
+}
+
+impl Bounds {
+    /// The answer with witnesses `point_a`, `point_b` on the approximating surfaces, a
+    /// lower bound `lower` of the hulls' distance and an upper bound `upper` of it, when it
+    /// fits.
+    fn finish(
+        &self,
+        point_a: Point3<f64>,
+        point_b: Point3<f64>,
+        lower_hulls: f64,
+        upper_hulls: f64,
+        iterations: usize,
+        method: Method,
+    ) -> Option<ConvexAnswer> {
         let value = (point_a - point_b).norm();
         // `value` is a distance between points of the approximating solids, which lie in the
         // hulls: `lower <= d(H_A, H_B) <= value`. It exceeds the approximations' distance by
         // at most `value - lower`, which must fit the requested width (up to rounding) for
         // the value to be within `eps_a + eps_b + width` of the truth.
-        let fits = value - best_lower <= requested_width + rounding;
+        let fits = value - lower_hulls <= self.requested_width + self.rounding;
         // Any number above an upper bound is one; any number below a lower bound is one.
-        let lower = (best_lower - widen).max(0.0).min(value);
-        let upper = (r.upper + widen).max(value);
-        if fits && upper - lower <= allowed {
-            return Some(ConvexAnswer {
-                value,
-                lower,
-                upper,
+        let lower = (lower_hulls - self.widen).max(0.0).min(value);
+        let upper = (upper_hulls.min(value) + self.widen).max(value);
+        (fits && upper - lower <= self.allowed).then_some(ConvexAnswer {
+            value,
+            lower,
+            upper,
+            point_a,
+            point_b,
+            overlap: false,
+            iterations,
+            method,
+        })
+    }
+
+    /// The answer from a rim of A or B ([`rims`], [`rim`]): the rim point nearest to the
+    /// other solid's surface and that surface point, bounded below by the hulls' separation
+    /// along the pair (both supports) and by GJK's bound.
+    #[allow(clippy::too_many_arguments)]
+    fn answer_from_rims(
+        &self,
+        ta: &QueryTree,
+        tb: &QueryTree,
+        pos_ab: &Isometry3<f64>,
+        found: [Option<RimStart>; 2],
+        support_a: &impl Fn(&Vector3<f64>) -> Point3<f64>,
+        support_b: &impl Fn(&Vector3<f64>) -> Point3<f64>,
+        r: &gjk::GjkResult,
+    ) -> Option<ConvexAnswer> {
+        let rim = |k: usize| {
+            found[k].map(
+                |RimStart {
+                     meridian,
+                     theta,
+                     crease,
+                 }| rim::Rim {
+                    meridian,
+                    theta,
+                    // A crease is worth the secant's few steps; a single support point's
+                    // parallel circle (a smooth part) only a guess.
+                    evaluations: if crease {
+                        rim::MAX_EVALUATIONS
+                    } else {
+                        rim::GUESS_EVALUATIONS
+                    },
+                    pose: if k == 0 { pos_ab.inverse() } else { *pos_ab },
+                    other: if k == 0 { tb } else { ta },
+                },
+            )
+        };
+        let rims = [rim(0), rim(1)];
+        let tolerance = RIM_TOLERANCE * self.requested_width.max(self.rounding);
+        rim::first_accepted(&rims, tolerance, |k, x, q| {
+            let (point_a, point_b) = if k == 0 {
+                (x, pos_ab * q)
+            } else {
+                (q, pos_ab * x)
+            };
+            let d = (point_b - point_a).try_normalize(0.0)?;
+            let along = d.dot(&(support_b(&-d) - support_a(&d)));
+            self.finish(
                 point_a,
                 point_b,
-                overlap: false,
-                iterations: r.iterations,
-            });
-        }
-        let gap = r.upper - best_lower;
-        if gap.is_nan() || gap <= 0.0 || r.iterations >= gjk::MAX_ITERATIONS {
-            return None;
-        }
-        target_gap = target_gap.min(0.25 * gap);
-        start = r.point_a - r.point_b;
+                r.lower.max(along),
+                r.upper,
+                r.iterations,
+                Method::Rim,
+            )
+        })
     }
-    None
+
+    /// The answer from GJK's state `r`, when the witnesses moved to the surfaces fit.
+    fn answer(
+        &self,
+        ta: &QueryTree,
+        tb: &QueryTree,
+        pos_ab: &Isometry3<f64>,
+        r: &gjk::GjkResult,
+    ) -> Option<ConvexAnswer> {
+        let (point_a, point_b) = surface_witnesses(ta, tb, pos_ab, r);
+        self.finish(
+            point_a,
+            point_b,
+            r.lower,
+            r.upper,
+            r.iterations,
+            Method::Gjk,
+        )
+    }
 }
 
 /// GJK's closest points moved to the approximating surfaces ([`witness`]), B's in A's
@@ -266,5 +503,6 @@ fn certified_overlap(
         point_b: found,
         overlap: true,
         iterations: r.iterations,
+        method: Method::Gjk,
     })
 }

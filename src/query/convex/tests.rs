@@ -860,3 +860,139 @@ fn probe_hull_bound_for_non_convex() {
         }
     }
 }
+
+/// The ball path (`ball.rs`): a ball against each convex model, either order, answers the
+/// close poses itself (no GJK iteration), holds the traversal's distance at tolerance 0,
+/// with witnesses on the analytic surfaces; a ball whose centre is inside the other solid,
+/// or that overlaps it, is left to GJK (overlap certified or declined), never answered
+/// apart.
+#[test]
+fn ball_path_answers_close_poses_and_leaves_overlaps_to_gjk() {
+    let mut rng = SplitMix64(0xBA11);
+    let ball = solid("sphere", 1e-4);
+    let (mut planar, mut total) = (0, 0);
+    for name in CONVEX_MODELS {
+        let other = solid(name, 1e-4);
+        for k in 0..60 {
+            let (a, b, na, nb) = if k % 2 == 0 {
+                (&ball, &other, "sphere", name)
+            } else {
+                (&other, &ball, name, "sphere")
+            };
+            let gap = if k % 3 == 0 {
+                -10f64.powf(rng.range(-3.0, -0.5))
+            } else {
+                10f64.powf(rng.range(-6.0, -1.0))
+            };
+            let Some(pose) = near_touching(a, b, &mut rng, gap) else {
+                continue;
+            };
+            let bp = b.with_pose(pose);
+            let pos_ab = a.relative_pose(&bp);
+            let slack = query_slack(&a.tree, &bp.tree, &pos_ab);
+            let width = 2e-4;
+            let reference = distance(a, &bp, &traversal_exact());
+            let label = format!("{na}-{nb} pose {k} gap {gap:e}");
+            total += 1;
+            let Some(r) = super::convex_distance(&a.tree, &bp.tree, &pos_ab, slack, width) else {
+                assert!(gap < 0.0 || name == "sphere", "{label}: declined");
+                continue;
+            };
+            assert!(
+                r.lower <= reference.upper + 1e-12 && reference.lower <= r.upper + 1e-12,
+                "{label}: [{}, {}] vs [{}, {}]",
+                r.lower,
+                r.upper,
+                reference.lower,
+                reference.upper
+            );
+            if gap < 0.0 {
+                assert!(r.overlap || r.lower == 0.0, "{label}: answered apart");
+                continue;
+            }
+            planar += (r.method == super::Method::Ball) as usize;
+            assert!(!r.overlap && r.upper - r.lower <= width, "{label}: {r:?}");
+            let w = (r.point_a - r.point_b).norm();
+            assert!((w - r.value).abs() <= 1e-14, "{label}: witnesses");
+            let gap_a = analytic_surface_gap(na, &r.point_a);
+            let gap_b = analytic_surface_gap(nb, &pos_ab.inverse_transform_point(&r.point_b));
+            assert!(
+                gap_a <= 1e-4 && gap_b <= 1e-4,
+                "{label}: {gap_a:e} {gap_b:e}"
+            );
+        }
+    }
+    println!("{planar} of {total} answered by the ball path");
+    assert!(planar >= total / 2, "{planar} of {total}");
+}
+
+/// The rim solver (`rim.rs`) answers a share of the close poses of the pairs with creases
+/// (cylinder and cone edges), and those answers hold the traversal's distance at
+/// tolerance 0, with witnesses on the analytic surfaces and the value within the width.
+#[test]
+fn rim_answers_hold_the_traversals_distance() {
+    let mut rng = SplitMix64(0x0213);
+    let names = ["capsule", "cylinder", "cone"];
+    let solids: Vec<Solid> = names.iter().map(|n| solid(n, 1e-4)).collect();
+    let (mut by_rim, mut total) = (0, 0);
+    for i in 0..3 {
+        for j in i..3 {
+            let (a, b) = (&solids[i], &solids[j]);
+            for k in 0..80 {
+                let gap = 10f64.powf(rng.range(-5.0, -1.0));
+                let Some(pose) = near_touching(a, b, &mut rng, gap) else {
+                    continue;
+                };
+                let bp = b.with_pose(pose);
+                let pos_ab = a.relative_pose(&bp);
+                let slack = query_slack(&a.tree, &bp.tree, &pos_ab);
+                let width = if k % 2 == 0 { 2e-4 } else { 1e-7 };
+                let label = format!(
+                    "{}-{} pose {k} gap {gap:e} width {width:e}",
+                    names[i], names[j]
+                );
+                total += 1;
+                let Some(r) = super::convex_distance(&a.tree, &bp.tree, &pos_ab, slack, width)
+                else {
+                    continue;
+                };
+                if r.method != super::Method::Rim {
+                    continue;
+                }
+                by_rim += 1;
+                let reference = distance(a, &bp, &traversal_exact());
+                assert!(
+                    r.lower <= reference.upper + 1e-12 && reference.lower <= r.upper + 1e-12,
+                    "{label}: [{}, {}] vs [{}, {}]",
+                    r.lower,
+                    r.upper,
+                    reference.lower,
+                    reference.upper
+                );
+                assert!(
+                    !r.overlap && r.upper - r.lower <= width.max(floor(a, &bp)),
+                    "{label}"
+                );
+                assert!(
+                    (r.value - reference.value).abs() <= width + 4e-4,
+                    "{label}: value {} vs {}",
+                    r.value,
+                    reference.value
+                );
+                assert!(
+                    ((r.point_a - r.point_b).norm() - r.value).abs() <= 1e-14,
+                    "{label}"
+                );
+                let gap_a = analytic_surface_gap(names[i], &r.point_a);
+                let gap_b =
+                    analytic_surface_gap(names[j], &pos_ab.inverse_transform_point(&r.point_b));
+                assert!(
+                    gap_a <= 1e-4 && gap_b <= 1e-4,
+                    "{label}: {gap_a:e} {gap_b:e}"
+                );
+            }
+        }
+    }
+    println!("{by_rim} of {total} answered by the rim solver");
+    assert!(by_rim * 5 >= total, "{by_rim} of {total}");
+}

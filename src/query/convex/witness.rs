@@ -16,8 +16,10 @@
 //!
 //! The nearest point of a surface of revolution to `x` lies in `x`'s meridian half-plane, at
 //! the nearest point of the planar chain to `x`'s meridian coordinates `(rho, z)`: a descent
-//! of the tree's disks (each holds its pieces), nearer child first.
+//! of the tree's disks (each holds its pieces), nearer child first, on the pieces a convex
+//! tree keeps for it ([`crate::bvh::convex::nearest`]: no `atan2` or `sin`/`cos`).
 
+use crate::bvh::convex::nearest;
 use crate::bvh::QueryTree;
 use nalgebra::{Point2, Point3, Vector3};
 
@@ -49,6 +51,9 @@ pub fn nearest_surface_point(
 /// The point of the tree's planar chain nearest to the meridian point `m`; `None` for an
 /// empty tree.
 pub fn nearest_chain_point(tree: &QueryTree, m: Point2<f64>) -> Option<Point2<f64>> {
+    if let Some(c) = &tree.convex {
+        return nearest::nearest_chain_point(tree, &c.pieces, m).map(|(_, p)| p);
+    }
     let mut best: Option<(f64, Point2<f64>)> = None;
     if !tree.nodes.is_empty() {
         descend(tree, tree.root, m, &mut best);
