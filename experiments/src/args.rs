@@ -47,6 +47,15 @@ pub fn model_pairs(list: &str) -> Vec<ModelPair> {
         .collect()
 }
 
+/// Model pairs written back as [`model_pairs`] reads them (`a-b,c-d`), for provenance.
+pub fn pair_list(pairs: &[ModelPair]) -> String {
+    pairs
+        .iter()
+        .map(|(a, b)| format!("{a}-{b}"))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -78,6 +78,20 @@ impl ProfileArc {
         }
     }
 
+    /// An arc's polar angles about its centre as `(lowest, unsigned sweep)`, whichever way
+    /// it runs; `None` for a segment.
+    pub fn ascending_angles(&self) -> Option<(f64, f64)> {
+        match *self {
+            ProfileArc::Arc {
+                phi_start, sweep, ..
+            } if sweep >= 0.0 => Some((phi_start, sweep)),
+            ProfileArc::Arc {
+                phi_start, sweep, ..
+            } => Some((phi_start + sweep, -sweep)),
+            ProfileArc::Segment { .. } => None,
+        }
+    }
+
     /// Point at normalised parameter `s` in [0, 1].
     pub fn point_at(&self, s: f64) -> Point2<f64> {
         match *self {

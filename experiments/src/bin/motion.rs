@@ -213,14 +213,7 @@ fn run(args: Args) -> DriverResult {
             "OBBRSS and RSS on certified meshes, two layouts; ratio vs the faster".into(),
         ),
         ("seed", format!("{seed:#x}")),
-        (
-            "pairs",
-            pairs
-                .iter()
-                .map(|(a, b)| format!("{a}-{b}"))
-                .collect::<Vec<_>>()
-                .join(","),
-        ),
+        ("pairs", experiments::args::pair_list(&pairs)),
     ];
     let prov = Provenance::collect(
         "motion (paper Figure 12: 15 pairs in continuous motion)",

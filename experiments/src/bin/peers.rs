@@ -296,14 +296,7 @@ fn run(args: Args) -> DriverResult {
         ("convex_poses", convex_poses.to_string()),
         ("eps", format!("{eps_list:?}")),
         ("convex_eps", format!("{CONVEX_EPS:e}")),
-        (
-            "pairs",
-            pairs
-                .iter()
-                .map(|(a, b)| format!("{a}-{b}"))
-                .collect::<Vec<_>>()
-                .join(","),
-        ),
+        ("pairs", experiments::args::pair_list(&pairs)),
         ("coal", coal_version.clone()),
         ("parry3d", "parry3d-f64 0.31".into()),
         ("seed", format!("{seed:#x}")),

@@ -54,17 +54,8 @@ impl MeridianPiece {
                     inv_len2: if l2 > 0.0 { 1.0 / l2 } else { 0.0 },
                 }
             }
-            ProfileArc::Arc {
-                center,
-                radius,
-                phi_start,
-                sweep,
-            } => {
-                let (lo, span) = if sweep >= 0.0 {
-                    (phi_start, sweep)
-                } else {
-                    (phi_start + sweep, -sweep)
-                };
+            ProfileArc::Arc { center, radius, .. } => {
+                let (lo, span) = arc.ascending_angles().expect("an arc");
                 let dir = |phi: f64| Vector2::new(phi.cos(), phi.sin());
                 MeridianPiece::Arc {
                     center,

@@ -78,17 +78,8 @@ impl SupportTable {
         for piece in chain {
             match *piece {
                 ProfileArc::Segment { start, end } => points.extend([start, end]),
-                ProfileArc::Arc {
-                    center,
-                    radius,
-                    phi_start,
-                    sweep,
-                } => {
-                    let (from, sweep) = if sweep >= 0.0 {
-                        (phi_start, sweep)
-                    } else {
-                        (phi_start + sweep, -sweep)
-                    };
+                ProfileArc::Arc { center, radius, .. } => {
+                    let (from, sweep) = piece.ascending_angles().expect("an arc");
                     let n = ((sweep / FRAC_PI_2).ceil() as usize).max(1);
                     let dir = |phi: f64| Vector2::new(phi.cos(), phi.sin());
                     points.extend([piece.start(), piece.end()]);
