@@ -333,7 +333,7 @@ impl BiarcTree {
             return Err(TreeError::InvalidEps(eps));
         }
         let size = profile.bounding_box().diagonal();
-        if eps < BiarcTree::min_eps(profile) {
+        if eps < MIN_EPS_REL * size {
             return Err(TreeError::EpsTooSmall {
                 eps,
                 min: MIN_EPS_REL * size,

@@ -5,7 +5,7 @@
 use super::piece_curve::PieceCurve;
 use super::*;
 use crate::biarc::arc::cross;
-use crate::biarc::fit::{fit_biarc, g1_tolerance, CurveSample, FittedBiarc, PlanarCurve};
+use crate::biarc::fit::{fit_biarc, g1_tolerance, CurveSample, PlanarCurve};
 use crate::biarc::spiral::split_span;
 use crate::biarc::BiarcError;
 use crate::nurbs::Aabb2;
@@ -124,28 +124,56 @@ impl BiarcTree {
         !(dirs.contains(&1) && dirs.contains(&-1))
     }
 
-    /// The certified distance between a fitted biarc and its curve piece by the arc
-    /// deviation bound ([`crate::biarc::arc_deviation`], no spiral property): the larger of
-    /// the two arcs' bounds on their parts of the piece.
-    fn arc_deviation_bound(
+    /// The biarc of the curve piece between samples `a` and `b` with its certified bound, for
+    /// the spiral kinds that fit biarcs: the bilens bound plus the flat arcs' chord distance
+    /// and `stationary_slack` ([`SpiralBound::Bilens`]), or each arc's certified deviation
+    /// from its part of the piece ([`SpiralBound::ArcDeviation`], no spiral property).
+    fn fitted(
         &self,
         curve: &PieceCurve<'_>,
-        fit: &FittedBiarc,
-        (t0, t1): (f64, f64),
+        (a, b): (&CurveSample, &CurveSample),
+        kind: SpiralBound,
         piece: usize,
-    ) -> Result<f64, TreeError> {
-        let ranges = [(t0, fit.t_joint), (fit.t_joint, t1)];
+        stationary_slack: f64,
+    ) -> Result<([Arc; 2], f64), TreeError> {
+        let fit = fit_biarc(curve, a, b).map_err(|source| TreeError::Fit { piece, source })?;
+        // On a short spiral the J-circle crosses the curve and the joint is G1 to rounding; a
+        // larger defect means no crossing was found, so rounding made the piece something
+        // else and its bilens bound is not certain. The arc deviation bound needs no spiral:
+        // there the joint is G1 only to the piece's departure from one
+        // (ARC_DEVIATION_G1_TOL).
+        let g1 = g1_tolerance(&fit, self.coordinate_scale);
+        let allowed = match kind {
+            SpiralBound::Bilens => g1,
+            _ => g1.max(ARC_DEVIATION_G1_TOL),
+        };
+        let not_a_spiral = |t0: f64, t1: f64| TreeError::Fit {
+            piece,
+            source: BiarcError::NotASpiral { t0, t1 },
+        };
+        if fit.joint_defect() > allowed {
+            return Err(not_a_spiral(a.t, b.t));
+        }
+        if kind != SpiralBound::ArcDeviation {
+            // Bound of the curve piece against the biarc as the query revolves it (flat arcs
+            // as chords): bilens bound plus the largest chord/arc distance.
+            let flat = fit.arcs[0]
+                .flattening_error(self.flat_radius)
+                .max(fit.arcs[1].flattening_error(self.flat_radius));
+            return Ok((fit.arcs, fit.eps + flat + stationary_slack));
+        }
         let mut bound = 0.0f64;
-        for (arc, (t0, t1)) in fit.arcs.iter().zip(ranges) {
+        for (arc, (t0, t1)) in fit
+            .arcs
+            .iter()
+            .zip([(a.t, fit.t_joint), (fit.t_joint, b.t)])
+        {
             let d = curve
                 .arc_deviation(t0, t1, arc, self.flat_radius)
-                .ok_or(TreeError::Fit {
-                    piece,
-                    source: BiarcError::NotASpiral { t0, t1 },
-                })?;
+                .ok_or_else(|| not_a_spiral(t0, t1))?;
             bound = bound.max(d);
         }
-        Ok(bound)
+        Ok((fit.arcs, bound))
     }
 
     /// Joins consecutive spirals of a piece where one biarc fits their union within the
@@ -197,13 +225,9 @@ impl BiarcTree {
         if slack_start != 0.0 || slack_end != 0.0 {
             return None;
         }
-        let fit = fit_biarc(&curve, &start, &end).ok()?;
-        if fit.joint_defect() > g1_tolerance(&fit, self.coordinate_scale).max(ARC_DEVIATION_G1_TOL)
-        {
-            return None;
-        }
-        let bound = self
-            .arc_deviation_bound(&curve, &fit, (t0, t1), a.piece)
+        let kind = SpiralBound::ArcDeviation;
+        let (_, bound) = self
+            .fitted(&curve, (&start, &end), kind, a.piece, 0.0)
             .ok()?;
         (bound <= self.eps).then_some(union)
     }
@@ -262,40 +286,7 @@ impl BiarcTree {
             };
             let (arcs, bound) = match kind {
                 SpiralBound::Bilens | SpiralBound::ArcDeviation => {
-                    let fit = fit_biarc(&curve, &job.a, &job.b)
-                        .map_err(|source| TreeError::Fit { piece, source })?;
-                    // On a short spiral the J-circle crosses the curve and the joint is G1 to
-                    // rounding; a larger defect means no crossing was found, so rounding made
-                    // the piece something else and its bilens bound is not certain. The arc
-                    // deviation bound needs no spiral: there the joint is G1 only to the
-                    // piece's departure from one (ARC_DEVIATION_G1_TOL).
-                    let g1 = g1_tolerance(&fit, self.coordinate_scale);
-                    let allowed = match kind {
-                        SpiralBound::Bilens => g1,
-                        _ => g1.max(ARC_DEVIATION_G1_TOL),
-                    };
-                    if fit.joint_defect() > allowed {
-                        return Err(TreeError::Fit {
-                            piece,
-                            source: BiarcError::NotASpiral {
-                                t0: job.a.t,
-                                t1: job.b.t,
-                            },
-                        });
-                    }
-                    if kind == SpiralBound::ArcDeviation {
-                        let bound =
-                            self.arc_deviation_bound(&curve, &fit, (job.a.t, job.b.t), piece)?;
-                        (fit.arcs, bound)
-                    } else {
-                        // Bound of the curve piece against the biarc as the query revolves it
-                        // (flat arcs as chords): bilens bound plus the largest chord/arc
-                        // distance.
-                        let flat = fit.arcs[0]
-                            .flattening_error(self.flat_radius)
-                            .max(fit.arcs[1].flattening_error(self.flat_radius));
-                        (fit.arcs, fit.eps + flat + stationary_slack)
-                    }
+                    self.fitted(&curve, (&job.a, &job.b), kind, piece, stationary_slack)?
                 }
                 SpiralBound::ControlPolygon => {
                     let (a, b) = (job.a.point, job.b.point);
