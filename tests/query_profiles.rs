@@ -220,7 +220,6 @@ fn warm_starts_only_choose_the_first_leaf_pair() {
     let (ta, tb) = (&vase.tree, &ring.tree);
     let opts = TraversalOptions {
         tolerance: ta.target_eps + tb.target_eps,
-        lower_goal: f64::INFINITY,
         lower_floor: f64::NEG_INFINITY,
         budget: Budget::default(),
         bound: BoundKind::Torus,

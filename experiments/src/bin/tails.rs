@@ -435,7 +435,6 @@ fn extent(p: &Profile) -> (f64, f64, f64) {
 fn surface_gap(a: &Solid, b: &Solid, pose: &Isometry3<f64>, width: f64) -> (f64, f64) {
     let opts = TraversalOptions {
         tolerance: width,
-        lower_goal: f64::INFINITY,
         lower_floor: f64::NEG_INFINITY,
         budget: Budget::default(),
         bound: BoundKind::default(),

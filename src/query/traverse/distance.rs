@@ -226,7 +226,6 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     // same without expanding the upper node pairs twice.
     let topts = TraversalOptions {
         tolerance: (width - 2.0 * slack).max(0.0),
-        lower_goal: f64::INFINITY,
         lower_floor: slack,
         budget: opts.budget,
         bound: opts.bound,

@@ -297,11 +297,6 @@ fn record_leaf(
 pub struct TraversalOptions {
     /// Stop when `upper - lower <= tolerance`.
     pub tolerance: f64,
-    /// Also stop as soon as the lower bound exceeds this: the queue's smallest key is above
-    /// it, so every pair left is farther apart (Johnson and Cohen 1997, section 3.1: a
-    /// query may stop once its bounds answer the caller's question). `f64::INFINITY`
-    /// never stops early.
-    pub lower_goal: f64,
     /// Neither stop nor prune while the lower bound is at most this, whatever the tolerance:
     /// a query whose surfaces may meet within its width (lower bound at or below the
     /// rounding slack) would otherwise search both solids for an overlap; with the slack as
@@ -463,7 +458,7 @@ pub fn traverse(
             lower = out.upper;
             break;
         };
-        if e.state == State::Resolved || e.key >= level(out.upper) || e.key > opts.lower_goal {
+        if e.state == State::Resolved || e.key >= level(out.upper) {
             lower = e.key;
             break;
         }
