@@ -15,10 +15,25 @@
 //! become polynomials in `s` of degree 8 and 4, built directly in Bernstein form and solved
 //! by [`mod@crate::poly::solve`], which keeps roots of even multiplicity (a cylinder's critical
 //! angles are double roots after squaring). Squaring can add angles of the other branch;
-//! every caller measures each angle exactly, so extra angles are harmless, and none is lost.
+//! every caller measures each angle exactly, so extra angles are harmless.
+//!
+//! **Clusters.** Squaring multiplies the two branches' equations, so where the branches
+//! nearly agree (a nearly flat cone, `|n_rho|` small, or a circle nearly parallel to it) a
+//! simple root of one branch and a simple root of the other become a near-double root of
+//! the product, and the solver can only report a cluster: a span of angles within which the
+//! polynomial stays inside its coefficient noise. One representative angle of such a span
+//! can lie far from both branches' roots (a case at eps 1e-6 put it 2.4e-4 rad from a
+//! crossing, and a circle touching a cone was measured 1.1e-8 away from it). So every
+//! cluster is resolved on the unsquared branch functions (sign changes at the span's ends
+//! and representative, bisected to full precision), its ends are appended too, and the
+//! solve reports [`FieldAngles::Clustered`]: the angle set is then not proven complete, and
+//! callers that certify a lower bound from it must take that bound from elsewhere
+//! (`docs/verification.md`, "The corner case").
 
 use super::radial_field::ParamCircle;
-use crate::poly::solve::{roots_candidate_len, roots_into, roots_scratch_len, RootKind, BINOM};
+use crate::poly::solve::{
+    root_clusters_into, roots_candidate_len, roots_scratch_len, RootCluster, RootKind, BINOM,
+};
 use crate::tolerances::{COEFF_NOISE_FACTOR, S_TOL};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
@@ -120,77 +135,184 @@ fn harmonic_roots(a: f64, b: f64, k: f64, out: &mut Vec<f64>) -> bool {
     true
 }
 
-/// Roots in `s` of `p` mapped to angles; `false` when `p` vanishes identically (every
-/// coefficient within `noise`).
-fn push_roots<const N: usize>(p: &Poly<N>, noise: f64, theta0: f64, out: &mut Vec<f64>) -> bool {
+/// What a solve of [`line_field_critical`] or [`line_field_levels`] appended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldAngles {
+    /// Every root of the squared equation was isolated to full precision: the angles
+    /// contain every critical (or level) angle of both branches.
+    Isolated,
+    /// Some roots formed a cluster (an even-multiplicity candidate or a span of merged
+    /// candidates inside the coefficient noise): the angles were resolved as well as the
+    /// branch functions allow, but the set is not proven complete (module docs,
+    /// "Clusters").
+    Clustered,
+    /// The equation vanishes identically (the field is constant along the circle, or the
+    /// circle lies on the extended surface): nothing was appended.
+    Constant,
+}
+
+impl FieldAngles {
+    /// The weaker of two outcomes that both appended angles.
+    fn and(self, other: FieldAngles) -> FieldAngles {
+        match (self, other) {
+            (FieldAngles::Constant, _) | (_, FieldAngles::Constant) => FieldAngles::Constant,
+            (FieldAngles::Clustered, _) | (_, FieldAngles::Clustered) => FieldAngles::Clustered,
+            _ => FieldAngles::Isolated,
+        }
+    }
+}
+
+/// Bisection steps of a branch root inside a cluster: the span is at most a half circle
+/// (`pi`), and 64 halvings bring it below the spacing of doubles near `2 pi`.
+const CLUSTER_BISECTIONS: usize = 64;
+
+/// Appends every sign change of `f` between consecutive angles of `pts` (ascending),
+/// bisected to full precision.
+fn bisect_sign_changes(f: &impl Fn(f64) -> f64, pts: &[f64], out: &mut Vec<f64>) {
+    for w in pts.windows(2) {
+        let (mut a, mut b) = (w[0], w[1]);
+        let (fa, fb) = (f(a), f(b));
+        if !(fa.is_finite() && fb.is_finite()) || fa.signum() == fb.signum() || fa == 0.0 {
+            continue;
+        }
+        let sa = fa.signum();
+        for _ in 0..CLUSTER_BISECTIONS {
+            let m = 0.5 * (a + b);
+            if m <= a || m >= b {
+                break;
+            }
+            if f(m).signum() == sa {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        out.push(0.5 * (a + b));
+    }
+}
+
+/// Roots in `s` of `p` mapped to angles; [`FieldAngles::Constant`] when `p` vanishes
+/// identically (every coefficient within `noise`). A cluster appends its representative,
+/// its span's ends and the sign changes of each of `branches` (the unsquared equations
+/// whose product `p` is) between them, and makes the outcome [`FieldAngles::Clustered`].
+fn push_roots<const N: usize>(
+    p: &Poly<N>,
+    noise: f64,
+    theta0: f64,
+    branches: &[&dyn Fn(f64) -> f64],
+    out: &mut Vec<f64>,
+) -> FieldAngles {
     if p.iter().all(|c| c.abs() <= noise) {
-        return false;
+        return FieldAngles::Constant;
     }
     let mut scratch = [0.0; 64];
     let mut cand = [(0.0, RootKind::Odd); 32];
     debug_assert!(roots_scratch_len(N) <= 64 && roots_candidate_len(N) <= 32);
-    roots_into(
+    let angle = |s: f64| theta0 + 2.0 * (2.0 * s - 1.0).atan();
+    let mut outcome = FieldAngles::Isolated;
+    root_clusters_into(
         p,
         S_TOL,
         noise,
         &mut scratch[..roots_scratch_len(N)],
         &mut cand[..roots_candidate_len(N)],
-        &mut |s, _| out.push(theta0 + 2.0 * (2.0 * s - 1.0).atan()),
+        &mut |r: RootCluster| {
+            let root = angle(r.root);
+            out.push(root);
+            if r.kind == RootKind::Odd && r.lo == r.hi {
+                return;
+            }
+            outcome = FieldAngles::Clustered;
+            let pts = [angle(r.lo), root, angle(r.hi)];
+            out.extend([pts[0], pts[2]]);
+            for f in branches {
+                bisect_sign_changes(f, &pts, out);
+            }
+        },
     );
-    true
+    outcome
+}
+
+/// `q = rho^2`, `q'` and `z'` of the circle at `theta`.
+fn rho2_and_slopes(c: &ParamCircle, theta: f64) -> (f64, f64, f64) {
+    let (st, ct) = theta.sin_cos();
+    let p = c.o + c.u * ct + c.v * st;
+    let dp = c.v * ct - c.u * st;
+    (p.x * p.x + p.y * p.y, 2.0 * (p.x * dp.x + p.y * dp.y), dp.z)
 }
 
 /// Appends the critical angles of `F_s` (both branches) along `c` for the meridian line
-/// with unit normal `n`. Returns `false` (with `out` unchanged) when the polynomial vanishes
-/// identically: `F` is constant along the circle.
-pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>) -> bool {
+/// with unit normal `n`. [`FieldAngles::Constant`] (with `out` unchanged) when the
+/// polynomial vanishes identically: `F` is constant along the circle.
+pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>) -> FieldAngles {
     if n.x == 0.0 {
-        // Flat annulus: F = n_z z, critical where z' = v_z cos - u_z sin = 0.
-        return harmonic_roots(c.v.z, -c.u.z, 0.0, out);
+        // Flat annulus: F = n_z z, critical where z' = v_z cos - u_z sin = 0 (closed form).
+        return isolated_or_constant(harmonic_roots(c.v.z, -c.u.z, 0.0, out));
     }
+    // The unsquared equations of the two branches: 2 rho F_s' = s n_rho q' + 2 n_z rho z'.
+    let branch = |s: f64| {
+        move |theta: f64| {
+            let (q, dq, dz) = rho2_and_slopes(c, theta);
+            s * n.x * dq + 2.0 * n.y * q.sqrt() * dz
+        }
+    };
+    let (plus, minus) = (branch(1.0), branch(-1.0));
     let start = out.len();
     let (nr2, nz2) = (n.x * n.x, n.y * n.y);
+    let mut outcome = FieldAngles::Isolated;
     for theta0 in [0.0, PI] {
-        if n.y == 0.0 {
+        let h = HalfCircle::new(c, theta0);
+        let half = if n.y == 0.0 {
             // Cylinder: F = s n_rho rho, critical where q' = 0 (P = n_rho^2 q'^2: only the
             // square root of the double roots is needed).
-            let h = HalfCircle::new(c, theta0);
             let mag = max_abs(&lin(&[
                 (2.0, &mul::<3, 3, 5>(&abs(&h.x), &abs(&h.xp))),
                 (2.0, &mul::<3, 3, 5>(&abs(&h.y), &abs(&h.yp))),
             ]));
-            if !push_roots(&h.dq, COEFF_NOISE_FACTOR * mag, theta0, out) {
-                out.truncate(start);
-                return false;
-            }
-            continue;
-        }
-        let h = HalfCircle::new(c, theta0);
-        let zp2: Poly<5> = mul(&h.zp, &h.zp);
-        let dq2: Poly<9> = mul(&h.dq, &h.dq);
-        let qzp2: Poly<9> = mul(&h.q, &zp2);
-        let p = lin(&[(nr2, &dq2), (-4.0 * nz2, &qzp2)]);
-        let mag_dq2: Poly<9> = mul(&abs(&h.dq), &abs(&h.dq));
-        let mag_qzp2: Poly<9> = mul(&abs(&h.q), &abs(&zp2));
-        let mag = max_abs(&lin(&[(nr2, &mag_dq2), (4.0 * nz2, &mag_qzp2)]));
-        if !push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, out) {
+            push_roots(&h.dq, COEFF_NOISE_FACTOR * mag, theta0, &[&plus], out)
+        } else {
+            let zp2: Poly<5> = mul(&h.zp, &h.zp);
+            let dq2: Poly<9> = mul(&h.dq, &h.dq);
+            let qzp2: Poly<9> = mul(&h.q, &zp2);
+            let p = lin(&[(nr2, &dq2), (-4.0 * nz2, &qzp2)]);
+            let mag_dq2: Poly<9> = mul(&abs(&h.dq), &abs(&h.dq));
+            let mag_qzp2: Poly<9> = mul(&abs(&h.q), &abs(&zp2));
+            let mag = max_abs(&lin(&[(nr2, &mag_dq2), (4.0 * nz2, &mag_qzp2)]));
+            push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, &[&plus, &minus], out)
+        };
+        outcome = outcome.and(half);
+        if outcome == FieldAngles::Constant {
             out.truncate(start);
-            return false;
+            return outcome;
         }
     }
-    true
+    outcome
 }
 
 /// Appends the angles where `F_s = level` (both branches) along `c` for the meridian line
-/// with unit normal `n`. Returns `false` (with `out` unchanged) when the polynomial vanishes
-/// identically (the circle lies on the extended surface).
-pub fn line_field_levels(c: &ParamCircle, n: Vector2<f64>, level: f64, out: &mut Vec<f64>) -> bool {
+/// with unit normal `n`. [`FieldAngles::Constant`] (with `out` unchanged) when the
+/// polynomial vanishes identically (the circle lies on the extended surface).
+pub fn line_field_levels(
+    c: &ParamCircle,
+    n: Vector2<f64>,
+    level: f64,
+    out: &mut Vec<f64>,
+) -> FieldAngles {
     if n.x == 0.0 {
-        // Flat annulus: z = o_z + u_z cos + v_z sin = level / n_z.
-        return harmonic_roots(c.u.z, c.v.z, level / n.y - c.o.z, out);
+        // Flat annulus: z = o_z + u_z cos + v_z sin = level / n_z (closed form).
+        return isolated_or_constant(harmonic_roots(c.u.z, c.v.z, level / n.y - c.o.z, out));
     }
+    // The unsquared equations of the two branches: F_s - level = s n_rho rho + n_z z - level.
+    let branch = |s: f64| {
+        move |theta: f64| {
+            let p = c.point(theta);
+            s * n.x * p.x.hypot(p.y) + n.y * p.z - level
+        }
+    };
+    let (plus, minus) = (branch(1.0), branch(-1.0));
     let start = out.len();
     let nr2 = n.x * n.x;
+    let mut outcome = FieldAngles::Isolated;
     for theta0 in [0.0, PI] {
         let h = HalfCircle::new(c, theta0);
         // (c - n_z z)^2 D^2
@@ -200,12 +322,23 @@ pub fn line_field_levels(c: &ParamCircle, n: Vector2<f64>, level: f64, out: &mut
         let ra = lin(&[(level.abs(), &h.d), (n.y.abs(), &abs(&h.z))]);
         let ra2: Poly<5> = mul(&ra, &ra);
         let mag = max_abs(&lin(&[(nr2, &abs(&h.q)), (1.0, &ra2)]));
-        if !push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, out) {
+        let half = push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, &[&plus, &minus], out);
+        outcome = outcome.and(half);
+        if outcome == FieldAngles::Constant {
             out.truncate(start);
-            return false;
+            return outcome;
         }
     }
-    true
+    outcome
+}
+
+/// A closed-form solve's outcome: its roots are exact up to rounding.
+fn isolated_or_constant(appended: bool) -> FieldAngles {
+    if appended {
+        FieldAngles::Isolated
+    } else {
+        FieldAngles::Constant
+    }
 }
 
 #[cfg(test)]
@@ -258,8 +391,8 @@ mod tests {
             };
             let level = rng.f() - 0.5;
             let (mut crit, mut lev) = (Vec::new(), Vec::new());
-            assert!(line_field_critical(&c, n, &mut crit));
-            assert!(line_field_levels(&c, n, level, &mut lev));
+            assert_ne!(line_field_critical(&c, n, &mut crit), FieldAngles::Constant);
+            assert_ne!(line_field_levels(&c, n, level, &mut lev), FieldAngles::Constant);
             for s in [1.0, -1.0] {
                 for k in 0..m {
                     let t = k as f64 * step;
@@ -294,7 +427,10 @@ mod tests {
             v: Vector3::new(0.0, 0.5, 0.0),
         };
         let mut out = Vec::new();
-        assert!(!line_field_critical(&c, Vector2::new(1.0, 0.0), &mut out));
+        assert_eq!(
+            line_field_critical(&c, Vector2::new(1.0, 0.0), &mut out),
+            FieldAngles::Constant
+        );
         assert!(out.is_empty());
     }
 }

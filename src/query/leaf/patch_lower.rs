@@ -20,7 +20,7 @@ use crate::bvh::hull::PieceHull;
 use crate::bvh::patch::{Patch, ProfileArc};
 use crate::circle::min_distance;
 use crate::query::angles::common_normals::{as_circle3, parallel_circle};
-use crate::query::angles::meridian_line::{line_field_critical, line_field_levels};
+use crate::query::angles::meridian_line::{line_field_critical, line_field_levels, FieldAngles};
 use crate::query::angles::radial_field::ParamCircle;
 use crate::query::bound::hull_bound::{hull_bound_and_witness, PointPair};
 use crate::query::bound::node_pair::{
@@ -325,7 +325,14 @@ fn arc_cone(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> Option<ArcTori> {
     };
     // The major circle of the torus in the cone's frame.
     let major = ParamCircle::parallel(center.x, center.y, &pos_ct);
-    let (dist, theta) = circle_segment_distance(&major, start, end)?;
+    let found = circle_segment_distance(&major, start, end)?;
+    let theta = found.theta;
+    // Unresolved cone angles leave no lower bound here: the caller's volume bounds stand.
+    let dist = if found.complete {
+        found.distance
+    } else {
+        f64::NEG_INFINITY
+    };
     let scale = 1.0
         + center.x.abs()
         + center.y.abs()
@@ -377,7 +384,7 @@ pub(super) fn circle_segment_distance(
     circle: &ParamCircle,
     start: Point2<f64>,
     end: Point2<f64>,
-) -> Option<(f64, f64)> {
+) -> Option<CircleSegment> {
     let dir = end - start;
     let len = dir.norm();
     if len == 0.0 || !len.is_finite() {
@@ -406,11 +413,13 @@ pub(super) fn circle_segment_distance(
     // Level and critical angles of both mirror branches (a superset): each is measured
     // exactly where its foot is interior, so angles of the mirror branch are harmless.
     let mut angles = Vec::with_capacity(24);
-    if !line_field_levels(circle, n, c, &mut angles) {
+    let levels = line_field_levels(circle, n, c, &mut angles);
+    if levels == FieldAngles::Constant {
         // The circle lies on the extended cone: F is constant along it.
         angles.push(0.0);
     }
-    if !line_field_critical(circle, n, &mut angles) {
+    let critical = line_field_critical(circle, n, &mut angles);
+    if critical == FieldAngles::Constant {
         // F constant along the circle: every angle is critical.
         angles.push(0.0);
     }
@@ -421,7 +430,24 @@ pub(super) fn circle_segment_distance(
             }
         }
     }
-    Some(best)
+    let complete = ![levels, critical].contains(&FieldAngles::Clustered);
+    Some(CircleSegment {
+        distance: best.0,
+        theta: best.1,
+        complete,
+    })
+}
+
+/// What [`circle_segment_distance`] found.
+pub(super) struct CircleSegment {
+    /// The least candidate distance: always realised (an upper bound of the distance), and
+    /// the distance itself when `complete`.
+    pub distance: f64,
+    /// An angle on the circle where `distance` is attained.
+    pub theta: f64,
+    /// Every candidate angle was isolated; `false` when the cone's angles came out as
+    /// clusters (`angles::meridian_line`, "Clusters"), and then `distance` is no lower bound.
+    pub complete: bool,
 }
 
 /// Minimum distance from a circle (a [`ParamCircle`] in the parallel's frame) to the

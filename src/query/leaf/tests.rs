@@ -208,7 +208,8 @@ fn circle_segment_distance_matches_sampling() {
                 (Point2::new(r, -0.4), Point2::new(r, 0.4))
             }
         };
-        let (mine, theta) = circle_segment_distance(&circle, seg.0, seg.1).unwrap();
+        let found = circle_segment_distance(&circle, seg.0, seg.1).unwrap();
+        let (mine, theta) = (found.distance, found.theta);
         let planar = |t: f64| {
             let p = circle.point(t);
             let q = Point2::new(p.x.hypot(p.y), p.z);

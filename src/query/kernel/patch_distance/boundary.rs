@@ -127,6 +127,9 @@ pub(super) fn boundary_vs_patch(
     }
     let mut thetas = Vec::with_capacity(48);
     let circle = ParamCircle::parallel(e.x, e.y, pos_og);
+    // A cone's angles that the solver could only resolve as clusters: measured like the
+    // rest, but the answer is then an upper bound only (`angles::meridian_line`, "Clusters").
+    let mut clustered = false;
     let exact = match (kernel, o.core()) {
         (Kernel::Binormals, Core::Circle { .. }) if coaxial_circle(&circle) => {
             // Coaxial with the torus: the distance to the patch is the same at every angle.
@@ -148,9 +151,14 @@ pub(super) fn boundary_vs_patch(
             }
         }
         (Kernel::Binormals, Core::Line { n, c }) => {
-            let ok = line_field_critical(&circle, n, &mut thetas)
-                && line_field_levels(&circle, n, c, &mut thetas);
-            if !ok {
+            let critical = line_field_critical(&circle, n, &mut thetas);
+            let levels = match critical {
+                FieldAngles::Constant => FieldAngles::Constant,
+                _ => line_field_levels(&circle, n, c, &mut thetas),
+            };
+            clustered = [critical, levels].contains(&FieldAngles::Clustered);
+            if [critical, levels].contains(&FieldAngles::Constant) {
+                clustered = false;
                 thetas.clear();
                 // The line field is constant along the circle: a flat annulus and a circle
                 // in a parallel plane (closed form), else a circle coaxial with the cone or
@@ -171,7 +179,7 @@ pub(super) fn boundary_vs_patch(
     for &th in &thetas {
         emit_feet(circle.point(th));
     }
-    !exact
+    !exact || clustered
 }
 
 /// Whether the circle (frame O) is coaxial with O's z axis, to [`AXIS_TOLERANCE`].

@@ -46,7 +46,11 @@ pub(super) fn interior_via_core(
     } else {
         let exact = match (kernel, o.core()) {
             (Kernel::Binormals, Core::Line { n, .. }) => {
-                line_field_critical(&major, n, &mut thetas)
+                let critical = line_field_critical(&major, n, &mut thetas);
+                // Clustered angles are measured, but the answer is an upper bound only
+                // (`angles::meridian_line`, "Clusters").
+                sampled |= critical == FieldAngles::Clustered;
+                critical != FieldAngles::Constant
                     || (n.x == 0.0 && {
                         // A horizontal major circle over a flat annulus: every angle is
                         // critical, and the common normals are vertical; the one whose

@@ -54,7 +54,7 @@ use crate::num::norm2;
 use crate::query::angles::common_normals::{
     circle_torus_critical, interior_torus_torus, parallel_circle, parallel_pair_closest,
 };
-use crate::query::angles::meridian_line::{line_field_critical, line_field_levels};
+use crate::query::angles::meridian_line::{line_field_critical, line_field_levels, FieldAngles};
 use crate::query::angles::radial_field::{
     critical_angles, level_angles, level_crossings, ParamCircle, RadialField,
 };
