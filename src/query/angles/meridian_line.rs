@@ -392,7 +392,10 @@ mod tests {
             let level = rng.f() - 0.5;
             let (mut crit, mut lev) = (Vec::new(), Vec::new());
             assert_ne!(line_field_critical(&c, n, &mut crit), FieldAngles::Constant);
-            assert_ne!(line_field_levels(&c, n, level, &mut lev), FieldAngles::Constant);
+            assert_ne!(
+                line_field_levels(&c, n, level, &mut lev),
+                FieldAngles::Constant
+            );
             for s in [1.0, -1.0] {
                 for k in 0..m {
                     let t = k as f64 * step;

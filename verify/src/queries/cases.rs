@@ -1,6 +1,7 @@
 //! What a case is (two shapes of the pool, a pose of B, the query's options) and how case
 //! `id` is drawn from the campaign seed.
 
+use super::corners::corner_contact;
 use super::placement::{
     axis_centre, draw_rotation, interior_point, newton_gap, place_at_gap, quick_eval, spec,
 };
@@ -21,6 +22,9 @@ pub enum PoseKind {
     Nested,
     NestedNear,
     Coincident,
+    /// A corner circle of A against a corner, an axis end or a smooth point of B
+    /// ([`super::corners`]).
+    Corner,
 }
 
 impl PoseKind {
@@ -35,6 +39,7 @@ impl PoseKind {
             PoseKind::Nested => "nested",
             PoseKind::NestedNear => "nested-near-wall",
             PoseKind::Coincident => "coincident",
+            PoseKind::Corner => "corner",
         }
     }
 }
@@ -114,6 +119,12 @@ impl Case {
     }
 }
 
+/// Share of the campaign's cases posed as corner contacts ([`super::corners`]).
+pub const CORNER_SHARE: f64 = 0.25;
+/// Shape pairs a corner case draws before it falls back to a touching case (when neither
+/// shape of a pair has a corner).
+const CORNER_TRIES: usize = 20;
+
 /// Generates case `id` (deterministic in the seed and id).
 pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: ShapeSet) -> Case {
     let mut rng = SplitMix64(seed).fork(0xCA5E_0000 + id as u64);
@@ -131,6 +142,7 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
     let refine = rng.chance(0.15);
     let u = rng.next_f64();
     let kind = match u {
+        _ if rng.chance(CORNER_SHARE) => PoseKind::Corner,
         _ if u < 0.07 => PoseKind::Far,
         _ if u < 0.25 => PoseKind::Separated,
         _ if u < 0.55 => PoseKind::NearTouching,
@@ -150,6 +162,22 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
         tolerance,
         refine,
         note,
+    };
+    if kind == PoseKind::Corner {
+        for _ in 0..CORNER_TRIES {
+            let (a, b) = (
+                pick(&mut rng, shapes, None, set),
+                pick(&mut rng, shapes, None, set),
+            );
+            if let Some((pose, note)) = corner_contact(&mut rng, &shapes[a], &shapes[b]) {
+                return case(kind, a, b, pose, note);
+            }
+        }
+    }
+    let kind = if kind == PoseKind::Corner {
+        PoseKind::Touching
+    } else {
+        kind
     };
     match kind {
         PoseKind::Far => {

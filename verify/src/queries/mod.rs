@@ -4,7 +4,8 @@
 //! frames of the deforming model M_t (every 0.05) and seeded random freeform profiles
 //! ([`crate::random_profiles`]) under poses of every kind: far (translation ~1e3 and ~1e6),
 //! separated, near-touching (gaps 1e-2..1e-7), touching (gap 0), overlapping, nested (a small
-//! solid inside a large one, deep or near the wall), coincident (same solid, same pose), with
+//! solid inside a large one, deep or near the wall), coincident (same solid, same pose), corner
+//! contacts (a quarter of the cases, gaps 0, +-1e-13..1e-5 and overlaps), with
 //! tree eps in 1e-3..1e-6, some with a tolerance or refined witnesses. Cases that failed
 //! before the certificates were made rigorous and the failures found against earlier cores
 //! (frozen with their profiles in `verify/regressions/`) come first.
@@ -12,6 +13,8 @@
 //! * `pool.rs`: the shapes cases draw from;
 //! * `cases.rs`: what a case is and how one is drawn from the seed;
 //! * `placement.rs`: poses that aim at a gap (Newton on the translation, the oracle's quick mode);
+//! * `corners.rs`: corner contacts (a corner circle of A against a corner, an axis end or a
+//!   smooth point of B);
 //! * `regressions.rs`: the fixed cases, read from `verify/regressions/campaign-cases.txt`;
 //! * `checked_query.rs`: one query, its oracle and its checks (cold and warm-started);
 //! * `run.rs`: the campaign over worker threads, with panics caught;
@@ -19,6 +22,7 @@
 
 mod cases;
 mod checked_query;
+mod corners;
 pub mod merge;
 mod placement;
 mod pool;
