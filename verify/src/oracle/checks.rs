@@ -125,12 +125,15 @@ pub struct CheckInput<'a> {
 impl CheckInput<'_> {
     /// The round-off slack of this scene.
     pub fn slack(&self) -> f64 {
-        let t = (self.pose_a.inverse() * self.pose_b)
-            .translation
-            .vector
-            .norm();
-        SLACK_REL * (1.0 + t + self.a.geom.size + self.b.geom.size)
+        scene_slack(self.a, self.b, &(self.pose_a.inverse() * self.pose_b))
     }
+}
+
+/// The round-off slack of the checks for B placed by `pos_ab` in A's frame: [`SLACK_REL`]
+/// of the scene's size.
+pub fn scene_slack(a: &PlanarIndex, b: &PlanarIndex, pos_ab: &Isometry3<f64>) -> f64 {
+    let t = pos_ab.translation.vector.norm();
+    SLACK_REL * (1.0 + t + a.geom.size + b.geom.size)
 }
 
 /// Distance from a world point to a solid's true surface (realised closest point).

@@ -10,7 +10,7 @@ pub mod planar;
 pub mod profile_eval;
 pub mod surface_distance;
 
-pub use checks::{check, Check, CheckInput, Violation};
+pub use checks::{check, scene_slack, Check, CheckInput, Violation};
 pub use planar::PlanarIndex;
 pub use profile_eval::ProfileGeom;
 pub use surface_distance::{refine_hint, surface_distance, OracleOptions, OracleResult};

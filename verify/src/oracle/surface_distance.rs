@@ -26,6 +26,9 @@
 //! length), both taken with a factor of safety. Both directions bound the same surface
 //! distance, so the branch and bound runs in one of them only (the one with the smaller
 //! initial grid); the other direction's grid still serves the inside census and seeds.
+//! With a goal (`OracleOptions::goal`) the search stops as soon as the lower estimate is
+//! known to be at least the goal, or cannot exceed it (the realised upper estimate is at or
+//! below it): the estimate is then as tight as its user needs, and still a lower bound.
 //!
 //! # Upper estimate
 //! From the best, mutually distant cells (and from any cell found later whose centre beats the
@@ -72,6 +75,11 @@ pub struct OracleOptions {
     pub max_refinements: usize,
     /// Run the branch and bound at all (the quick mode only wants the upper estimate).
     pub bound: bool,
+    /// The level the lower estimate must reach for its user (a campaign's check b needs it
+    /// only up to the query's upper bound plus the slack): the branch and bound stops once
+    /// every cell's bound reaches it, or once the realised upper estimate is at or below it
+    /// (then no lower estimate can exceed it). Infinite: run to `upper - tau`.
+    pub goal: f64,
 }
 
 impl OracleOptions {
@@ -84,6 +92,7 @@ impl OracleOptions {
             seeds: 6,
             max_refinements: 24,
             bound: true,
+            goal: f64::INFINITY,
         }
     }
 
@@ -96,6 +105,7 @@ impl OracleOptions {
             seeds: 4,
             max_refinements: 0,
             bound: false,
+            goal: f64::INFINITY,
         }
     }
 }
@@ -628,7 +638,7 @@ impl<'a> Dir<'a> {
                 break;
             };
             let upper = st.best.map_or(f64::INFINITY, |p| p.d);
-            if lb.max(0.0) >= upper - tau {
+            if lb.max(0.0) >= (upper - tau).min(opts.goal) || upper <= opts.goal {
                 lower = lb.min(leaf_min);
                 break;
             }

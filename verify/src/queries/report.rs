@@ -306,11 +306,22 @@ impl Summary {
             .iter()
             .filter(|r| r.oracle.as_ref().is_some_and(|o| o.budget_hit))
             .count();
+        let share = 100.0 * budget as f64 / self.results.len().max(1) as f64;
         writeln!(
             s,
-            "oracle: {hints} cases tightened by the query's witnesses, {budget} lower estimates stopped on the cell budget"
+            "oracle: {hints} cases tightened by the query's witnesses, {budget} lower estimates stopped on the cell budget ({share:.2}%)"
         )
         .unwrap();
+        let mut stops: std::collections::BTreeMap<&str, usize> = Default::default();
+        for r in &self.results {
+            if r.oracle.as_ref().is_some_and(|o| o.budget_hit) {
+                *stops.entry(r.case.kind.name()).or_default() += 1;
+            }
+        }
+        if !stops.is_empty() {
+            let list: Vec<String> = stops.iter().map(|(k, n)| format!("{k} {n}")).collect();
+            writeln!(s, "budget stops by pose kind: {}", list.join("; ")).unwrap();
+        }
         let mut slow: Vec<&CaseResult> =
             self.results.iter().filter(|r| r.answer.is_some()).collect();
         slow.sort_by_key(|r| std::cmp::Reverse(r.query_time));
