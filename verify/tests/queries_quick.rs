@@ -4,7 +4,7 @@
 //! `cargo test --release -p verify --test queries_quick` (about 20-40 s on 2 cores).
 //! Reproducers of failures go to `target/tmp/verify-queries-quick/`.
 
-use verify::queries::{run, CampaignOptions, DEFAULT_EPS};
+use verify::queries::{run, CampaignOptions, PoseKind, DEFAULT_EPS};
 
 #[test]
 fn quick_slice_has_no_violations() {
@@ -27,6 +27,15 @@ fn quick_slice_has_no_violations() {
     }
     let report = s.report(opts.print_failures);
     assert_eq!(s.violation_count(), 0, "\n{report}");
+    // The oracle reaches its verdict (`docs/verification.md`, "An oracle that finishes"),
+    // and the corner contacts are a real share of the slice.
+    assert!(
+        s.budget_stops() * 100 <= s.results.len(),
+        "{} budget stops in {} cases\n{report}",
+        s.budget_stops(),
+        s.results.len()
+    );
+    assert!(s.count_of(PoseKind::Corner) >= 40, "\n{report}");
 }
 
 /// Balls and solid tori only: every query takes the closed form of `revdist::query::offset`

@@ -27,6 +27,19 @@ impl Summary {
         self.results.iter().filter(|r| r.failed())
     }
 
+    /// Cases whose oracle lower estimate stopped on its cell budget before its goal.
+    pub fn budget_stops(&self) -> usize {
+        self.results
+            .iter()
+            .filter(|r| r.oracle.as_ref().is_some_and(|o| o.budget_hit))
+            .count()
+    }
+
+    /// Cases of one pose kind.
+    pub fn count_of(&self, kind: PoseKind) -> usize {
+        self.results.iter().filter(|r| r.case.kind == kind).count()
+    }
+
     /// Number of violations (all checks) plus build errors.
     pub fn violation_count(&self) -> usize {
         self.results
@@ -301,11 +314,7 @@ impl Summary {
             .iter()
             .filter(|r| r.hint_improved.is_some())
             .count();
-        let budget = self
-            .results
-            .iter()
-            .filter(|r| r.oracle.as_ref().is_some_and(|o| o.budget_hit))
-            .count();
+        let budget = self.budget_stops();
         let share = 100.0 * budget as f64 / self.results.len().max(1) as f64;
         writeln!(
             s,
