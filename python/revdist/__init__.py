@@ -8,8 +8,8 @@ bits as ``revdist distance --batch`` gives for the same query.
 
 Poses: a point ``x`` of a solid's own frame (axis of revolution = z) is at ``R x + t``.
 Give them as ``(N, 7)`` rows ``[tx, ty, tz, qw, qx, qy, qz]`` (unit quaternion, w first;
-norms within 1e-6 of 1 are normalised), ``(N, 4, 4)`` homogeneous matrices, or one pose as
-``(7,)`` or ``(4, 4)``.
+norms within 1e-3 of 1 are normalised and the answer is certified for the normalised pose),
+``(N, 4, 4)`` homogeneous matrices, or one pose as ``(7,)`` or ``(4, 4)``.
 
 >>> import numpy as np, revdist
 >>> a = revdist.Solid.model("pawn", eps=1e-4)
@@ -199,7 +199,8 @@ class Pair:
     one's closest leaf pair, which saves time when consecutive poses are close. Answers are
     certified like cold ones (their intervals hold the true distance) but may differ from
     them in the last bits. Queries of one Pair run in order, one call at a time; the GIL is
-    released while they run.
+    released while they run. A Pair pickles (for multiprocessing, Dask, Ray, joblib) by its
+    two solids; the unpickled Pair starts cold.
 
     >>> pair = Pair(a, b)                 # doctest: +SKIP
     >>> r = pair.distance(poses)          # doctest: +SKIP
@@ -237,6 +238,11 @@ class Pair:
     def reset(self):
         """Forget the warm start: the next query is cold."""
         self._pair.reset()
+
+    def __reduce__(self):
+        # Pickled by its two solids (each by its recipe); the warm start stays behind, so
+        # an unpickled Pair starts cold: its first answer is a cold query's bits.
+        return (Pair, (self.a, self.b))
 
     def __repr__(self):
         return f"revdist.Pair({self.a!r}, {self.b!r})"

@@ -1,7 +1,7 @@
 """Type stubs of the `revdist` package: certified distances between solids of revolution."""
 
 from os import PathLike
-from typing import Optional, Union
+from typing import Any, Optional, Sequence, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -14,8 +14,18 @@ WIDTH_LIMITS: list[str]
 PoseArray = npt.ArrayLike
 """(N, 7) rows [tx, ty, tz, qw, qx, qy, qz], (N, 4, 4) matrices, or one (7,) / (4, 4) pose."""
 
+class NurbsPiece(TypedDict):
+    """One NURBS piece of a profile: knots (k,), points (n, 2) [rho, z], weights (n,) or None."""
+
+    degree: int
+    knots: npt.NDArray[np.float64]
+    points: npt.NDArray[np.float64]
+    weights: Optional[npt.NDArray[np.float64]]
+
 class Solid:
-    """A solid of revolution held as a biarc tree of two-sided Hausdorff bound eps."""
+    """A solid of revolution held as a biarc tree of two-sided Hausdorff bound eps.
+    Immutable; pickles by its recipe (built-in name or profile pieces) and is rebuilt on
+    load to the same bits."""
 
     @staticmethod
     def model(name: str, eps: float = ...) -> Solid:
@@ -26,6 +36,22 @@ class Solid:
     @staticmethod
     def load(spec: str, eps: float = ...) -> Solid:
         """A built-in name, else a file path, resolved as the command line does."""
+    @staticmethod
+    def from_polyline(rz: npt.ArrayLike, eps: float = ..., name: str = "polyline") -> Solid:
+        """A polyline (n, 2) of [rho, z] points, open with both ends on the axis or closed
+        (last point = first); one line piece per segment, corners allowed. ValueError names
+        the problem (self-intersection, rho < 0, NaN, shape)."""
+    @staticmethod
+    def from_nurbs(
+        pieces: Sequence[Union[NurbsPiece, Sequence[Any]]], eps: float = ..., name: str = "nurbs"
+    ) -> Solid:
+        """NURBS pieces joined end to start: dicts {degree, knots, points, weights} or
+        sequences (degree, knots, points[, weights]); checked as a profile file is."""
+    def profile(self) -> list[NurbsPiece]:
+        """The exact profile's pieces as arrays (what from_nurbs takes back)."""
+    @property
+    def kind(self) -> str:
+        """"closed" (a loop in rho > 0) or "open" (both ends on the axis)."""
     @property
     def spec(self) -> str: ...
     @property
@@ -89,6 +115,7 @@ class Pair:
         refine: bool = False,
     ) -> DistanceResult: ...
     def reset(self) -> None: ...
+    def __reduce__(self) -> tuple[Any, ...]: ...
 
 def models() -> list[str]:
     """Names of the built-in models."""

@@ -6,6 +6,7 @@
 //! `try_distance_cached`, the functions the command line's batch uses: the same query gives
 //! the same bits and the same error message as `revdist distance --batch`.
 
+mod arrays;
 mod errors;
 mod poses;
 mod query;
@@ -18,6 +19,7 @@ fn _revdist(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<solid::PySolid>()?;
     m.add_class::<query::PyPair>()?;
     m.add_function(wrap_pyfunction!(solid::models, m)?)?;
+    m.add_function(wrap_pyfunction!(solid::_solid_from_recipe, m)?)?;
     m.add("WIDTH_LIMITS", query::WIDTH_LIMIT_NAMES.to_vec())?;
     m.add("DEFAULT_EPS", solid::DEFAULT_EPS)?;
     Ok(())

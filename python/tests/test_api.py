@@ -94,7 +94,7 @@ def test_pose_a_moves_the_pair_rigidly(pawn_cup):
         (np.zeros((3, 6)), "poses must have shape (N, 7)"),
         (np.zeros((2, 3, 3)), "got shape (2, 3, 3)"),
         (np.zeros(5), "got shape (5,)"),
-        (np.array([[0, 0, 0, 1, 0, 0, 0.5]]), "poses[0]: rotation [1.0, 0.0, 0.0, 0.5] is not a unit quaternion [w, x, y, z] (norm 1.118033988749895)"),
+        (np.array([[0, 0, 0, 1, 0, 0, 0.5]]), "poses[0]: rotation [1.0, 0.0, 0.0, 0.5] is not a unit quaternion [w, x, y, z] (norm 1.118033988749895, more than 1e-3 from 1); normalised it is [0.8944271909999159, 0.0, 0.0, 0.4472135954999579]"),
         (np.array([[np.nan, 0, 0, 1, 0, 0, 0]]), "poses[0]: translation.x is NaN, not a finite number"),
         (np.array([[0, 0, 0, np.nan, 0, 0, 0]]), "poses[0]: rotation [NaN, 0.0, 0.0, 0.0] is not a unit quaternion"),
         (np.array([[0, 0, 0, 1, 0, 0, 0]], dtype=complex), "must be an array of real numbers (float64), got dtype complex128"),

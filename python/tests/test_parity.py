@@ -137,6 +137,22 @@ def test_errors_carry_the_cli_messages(cli, tmp_path, pawn_cup):
     with pytest.raises(ValueError) as e:
         revdist.distance(a, b, np.array([[0, 0, 0, 1, 0, 0, 0], [0, 0, 0, *rot]], float))
     assert str(e.value) == "poses[1]: " + msg[len("pose_b: "):]
+    # A quaternion typed with 4 decimals (norm 0.99999) is normalised by both, to the
+    # same bits; one further off than 1e-3 is refused by both with its normalised value.
+    typed = [0.7071, 0.0, 0.7071, 0.0]
+    (answer,) = run_batch(cli, [{"a": "pawn", "b": "cup", "eps": 1e-3,
+                                 "pose_b": {"translation": [1.5, 0.0, 0.2], "rotation": typed}}])
+    got = revdist.distance(a, b, np.array([1.5, 0.0, 0.2, *typed]))
+    assert (got.value, got.lower, got.upper) == (answer["distance"], answer["lower"], answer["upper"])
+    unit = np.array(typed) / np.linalg.norm(typed)
+    exact = revdist.distance(a, b, np.array([1.5, 0.0, 0.2, *unit]))
+    assert abs(exact.value - got.value) < 1e-12
+    rot = [0.7, 0.0, 0.7, 0.0]
+    msg = cli_error(cli, {"a": "pawn", "b": "cup", "pose_b": {"rotation": rot}})
+    assert msg.endswith("normalised it is [0.7071067811865476, 0.0, 0.7071067811865476, 0.0]")
+    with pytest.raises(ValueError) as e:
+        revdist.distance(a, b, np.array([0, 0, 0, *rot], float))
+    assert str(e.value) == "poses: " + msg[len("pose_b: "):]
     # An unknown name, resolved as the CLI resolves it (name, else file).
     msg = cli_error(cli, {"a": "nope", "b": "cup"})
     with pytest.raises(FileNotFoundError) as e:

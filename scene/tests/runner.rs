@@ -138,7 +138,11 @@ fn bad_scenes_name_the_field() {
         ),
         (
             format!("{HEAD}[[body]]\nname = \"a\"\nmodel = \"cone\"\neffect = \"static\"\npose = {{ quaternion = [0.0, 0.0, 0.0, 0.0] }}\n"),
-            "pose.quaternion: must be finite and non-zero",
+            "pose.quaternion: rotation [0.0, 0.0, 0.0, 0.0] is not a unit quaternion [w, x, y, z] (norm 0, more than 1e-3 from 1)",
+        ),
+        (
+            format!("{HEAD}[[body]]\nname = \"a\"\nmodel = \"cone\"\neffect = \"static\"\npose = {{ quaternion = [1.0, 0.0, 0.0, 1.0] }}\n"),
+            "normalised it is [0.7071067811865475, 0.0, 0.0, 0.7071067811865475]",
         ),
         (
             format!("{HEAD}[[body]]\nname = \"a\"\nmodel = \"cone\"\neffect = \"kinematic\"\nkeyframes = [{{ time = 1.0, pose = {{}} }}, {{ time = 0.5, pose = {{}} }}]\n"),
@@ -152,6 +156,18 @@ fn bad_scenes_name_the_field() {
         (HEAD.to_string(), "missing field `body`"),
     ];
     assert_errors_mention(&cases);
+}
+
+/// A quaternion typed with 4 decimals (norm 0.99999) is normalised, as on the command line.
+#[test]
+fn typed_quaternions_are_normalised() {
+    let text = format!(
+        "{HEAD}[[body]]\nname = \"a\"\nmodel = \"cone\"\neffect = \"static\"\npose = {{ quaternion = [0.7071, 0.0, 0.7071, 0.0] }}\n"
+    );
+    let scene = parse(&text).unwrap();
+    let q = scene.bodies[0].pose.rotation.into_inner();
+    assert!((q.norm() - 1.0).abs() < 1e-15);
+    assert_eq!(q.w, q.j);
 }
 
 /// Every example scene parses, plans and runs its first frames.

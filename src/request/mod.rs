@@ -11,5 +11,7 @@ pub mod pose;
 pub mod spec;
 
 pub use options::{check_eps, check_tolerance, max_time, query_options, OptionError};
-pub use pose::{pose_from_matrix, pose_from_quaternion, PoseError, UNIT_QUATERNION_SLACK};
+pub use pose::{
+    pose_from_matrix, pose_from_quaternion, unit_quaternion, PoseError, UNIT_QUATERNION_SLACK,
+};
 pub use spec::{build_solid, load_profile, read_profile_file, SpecError};

@@ -6,12 +6,16 @@ use nalgebra::{Isometry3, Matrix3, Quaternion, Rotation3, Translation3, UnitQuat
 
 use crate::limits::{check_translation, RangeError};
 
-/// A quaternion whose norm differs from 1 by more than this is rejected (it is not a
-/// rotation written with ~7 significant digits); closer ones are normalised.
-pub const UNIT_QUATERNION_SLACK: f64 = 1e-6;
+/// A quaternion whose norm differs from 1 by more than this is rejected; closer ones are
+/// normalised, and the pose is that of the normalised quaternion. 1e-3 admits a unit
+/// quaternion typed with 3 decimals (each of the 4 components off by at most 5e-4, so the
+/// norm by at most 1e-3), such as `[0.7071, 0, 0.7071, 0]` (norm 0.99999), while a
+/// quaternion further off is more likely a mistake (a component missing or mistyped) than
+/// a rounding.
+pub const UNIT_QUATERNION_SLACK: f64 = 1e-3;
 
 /// A rotation block `R` with some entry of `R^T R - I` larger than this is rejected, the
-/// same ~7 significant digits as [`UNIT_QUATERNION_SLACK`]; closer ones are taken through
+/// ~7 significant digits of a matrix computed by a program; closer ones are taken through
 /// their quaternion, which is normalised.
 pub const ROTATION_MATRIX_SLACK: f64 = 1e-6;
 
@@ -21,8 +25,9 @@ pub enum PoseError {
     /// The translation is not finite or out of range ([`crate::limits::MAX_TRANSLATION`]).
     #[error(transparent)]
     Translation(#[from] RangeError),
-    /// The quaternion's norm is not within [`UNIT_QUATERNION_SLACK`] of 1 (or not finite).
-    #[error("rotation {rotation:?} is not a unit quaternion [w, x, y, z] (norm {norm})")]
+    /// The quaternion's norm is not within [`UNIT_QUATERNION_SLACK`] of 1 (or not finite);
+    /// the message shows the normalised quaternion when there is one, ready to paste.
+    #[error("{}", not_unit_message(rotation, *norm))]
     NotUnit { rotation: [f64; 4], norm: f64 },
     /// A matrix entry is NaN or infinite.
     #[error("matrix entry [{row}][{col}] is {value}, not a finite number")]
@@ -35,22 +40,39 @@ pub enum PoseError {
     NotRotation { deviation: f64, det: f64 },
 }
 
-/// The pose `x -> R x + t`, `R` the rotation of the quaternion `rotation = [w, x, y, z]`
-/// (normalised when its norm is within [`UNIT_QUATERNION_SLACK`] of 1).
-pub fn pose_from_quaternion(
-    translation: [f64; 3],
-    rotation: [f64; 4],
-) -> Result<Isometry3<f64>, PoseError> {
-    let t = check_translation("translation", translation)?;
+fn not_unit_message(rotation: &[f64; 4], norm: f64) -> String {
+    let mut text = format!(
+        "rotation {rotation:?} is not a unit quaternion [w, x, y, z] (norm {norm}, more than {UNIT_QUATERNION_SLACK:e} from 1)"
+    );
+    if norm.is_finite() && norm > 0.0 {
+        let unit = rotation.map(|c| c / norm);
+        text.push_str(&format!("; normalised it is {unit:?}"));
+    }
+    text
+}
+
+/// The rotation of the quaternion `rotation = [w, x, y, z]`, normalised when its norm is
+/// within [`UNIT_QUATERNION_SLACK`] of 1, refused otherwise.
+pub fn unit_quaternion(rotation: [f64; 4]) -> Result<UnitQuaternion<f64>, PoseError> {
     let r = rotation;
     let q = Quaternion::new(r[0], r[1], r[2], r[3]);
     let norm = q.norm();
     if !norm.is_finite() || (norm - 1.0).abs() > UNIT_QUATERNION_SLACK {
         return Err(PoseError::NotUnit { rotation, norm });
     }
+    Ok(UnitQuaternion::from_quaternion(q))
+}
+
+/// The pose `x -> R x + t`, `R` the rotation of the quaternion `rotation = [w, x, y, z]`
+/// ([`unit_quaternion`]: normalised when its norm is within [`UNIT_QUATERNION_SLACK`] of 1).
+pub fn pose_from_quaternion(
+    translation: [f64; 3],
+    rotation: [f64; 4],
+) -> Result<Isometry3<f64>, PoseError> {
+    let t = check_translation("translation", translation)?;
     Ok(Isometry3::from_parts(
         Translation3::from(Vector3::from(t)),
-        UnitQuaternion::from_quaternion(q),
+        unit_quaternion(rotation)?,
     ))
 }
 
@@ -98,8 +120,45 @@ mod tests {
         let e = pose_from_quaternion([0.0; 3], [1.1, 0.0, 0.0, 0.0]).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "rotation [1.1, 0.0, 0.0, 0.0] is not a unit quaternion [w, x, y, z] (norm 1.1)"
+            "rotation [1.1, 0.0, 0.0, 0.0] is not a unit quaternion [w, x, y, z] (norm 1.1, \
+             more than 1e-3 from 1); normalised it is [1.0, 0.0, 0.0, 0.0]"
         );
+        let e = unit_quaternion([0.0; 4]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "rotation [0.0, 0.0, 0.0, 0.0] is not a unit quaternion [w, x, y, z] (norm 0, \
+             more than 1e-3 from 1)"
+        );
+    }
+
+    /// A quaternion as people type it, 4 or 3 decimals, is taken as the rotation of its
+    /// normalisation, compared with the exact quarter turn about y: the rotated points agree
+    /// to the rounding of the typed digits (the normalised axis is exact here, so only the
+    /// angle moves: `2 atan(x / w)` with `x = w`, a quarter turn to rounding).
+    #[test]
+    fn quaternions_typed_with_few_decimals_are_normalised() {
+        for c in [0.7071, 0.707] {
+            let p = pose_from_quaternion([0.0; 3], [c, 0.0, c, 0.0]).unwrap();
+            let q = p.rotation.into_inner();
+            assert!((q.norm() - 1.0).abs() < 1e-15, "{c}: normalised");
+            assert!((q.w - q.j).abs() == 0.0, "{c}: w and y stay equal");
+            let x = p * nalgebra::Point3::new(1.0, 0.0, 0.0);
+            assert!((x - nalgebra::Point3::new(0.0, 0.0, -1.0)).norm() < 1e-15);
+            // The typed norm is within the slack, but further off than the 1e-6 once asked...
+            let typed: f64 = (2.0 * c * c).sqrt();
+            assert!((typed - 1.0).abs() < UNIT_QUATERNION_SLACK && (typed - 1.0).abs() > 1e-6);
+        }
+        // ... and one further off than the slack names the normalised value to paste.
+        let e = pose_from_quaternion([0.0; 3], [0.7, 0.0, 0.7, 0.0]).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.ends_with("normalised it is [0.7071067811865476, 0.0, 0.7071067811865476, 0.0]"),
+            "{text}"
+        );
+        let just_inside = 1.0 + 0.999e-3;
+        assert!(unit_quaternion([just_inside, 0.0, 0.0, 0.0]).is_ok());
+        assert!(unit_quaternion([1.0 + 1.001e-3, 0.0, 0.0, 0.0]).is_err());
+        assert!(unit_quaternion([f64::INFINITY, 0.0, 0.0, 0.0]).is_err());
         let e = pose_from_quaternion([0.0, f64::NAN, 0.0], [1.0, 0.0, 0.0, 0.0]).unwrap_err();
         assert_eq!(e.to_string(), "translation.y is NaN, not a finite number");
     }

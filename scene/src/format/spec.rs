@@ -14,7 +14,8 @@ pub struct PoseSpec {
     pub axis: Option<Vec<f64>>,
     #[serde(default)]
     pub angle: Option<f64>,
-    /// Unit quaternion `[w, x, y, z]` (normalised when read; not with `axis`/`angle`).
+    /// Unit quaternion `[w, x, y, z]` (a norm within 1e-3 of 1 is normalised; not with
+    /// `axis`/`angle`).
     #[serde(default)]
     pub quaternion: Option<Vec<f64>>,
 }

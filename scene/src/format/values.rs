@@ -4,8 +4,9 @@
 
 use super::error::{field_error, SceneError};
 use super::spec::PoseSpec;
-use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 use revdist::limits::{check_magnitude, check_translation, MAX_TRANSLATION};
+use revdist::request::unit_quaternion;
 
 /// A count given or defaulted, within `range`; `unit` follows the range in the message
 /// (e.g. `" pixels"`).
@@ -97,15 +98,10 @@ pub fn pose_of(field: &str, p: &PoseSpec) -> Result<Isometry3<f64>, SceneError> 
                     format!("expected 4 numbers [w, x, y, z], got {}", q.len()),
                 ));
             }
-            let quat = Quaternion::new(q[0], q[1], q[2], q[3]);
-            let n = quat.norm();
-            if !(n.is_finite() && n > 0.0) {
-                return Err(field_error(
-                    format!("{field}.quaternion"),
-                    "must be finite and non-zero",
-                ));
-            }
-            UnitQuaternion::from_quaternion(quat)
+            // The command line's rule (`docs/inputs.md`, section 3): normalised within
+            // the slack of 1, refused beyond it with the normalised value to paste.
+            unit_quaternion([q[0], q[1], q[2], q[3]])
+                .map_err(|e| field_error(format!("{field}.quaternion"), e.to_string()))?
         }
         (None, Some(_), None) => {
             return Err(field_error(
