@@ -152,7 +152,7 @@ impl<'a> Search<'a> {
         }
         let d = distance(&self.a0, &bt, &opts);
         self.queries += 1;
-        if !(d.lower > 0.0) || d.overlap || !d.lower.is_finite() {
+        if d.lower.is_nan() || d.lower <= 0.0 || d.overlap || !d.lower.is_finite() {
             return (None, d);
         }
         // The translation between the two poses as queried, and the bound with the
@@ -170,7 +170,7 @@ impl<'a> Search<'a> {
 
     /// Searches along the unit direction `u` from the estimated touching length `s0`.
     pub fn along(&mut self, u: Vector3<f64>, s0: f64) {
-        if !(u.norm() > 0.0) || !s0.is_finite() {
+        if u.norm().is_nan() || u.norm() <= 0.0 || !s0.is_finite() {
             return;
         }
         let mut u = u.normalize();

@@ -85,7 +85,7 @@ impl SignedDistance {
             return self.distance.gradient(origin_b);
         }
         let p = self.penetration.as_ref()?;
-        if !p.narrow || !(p.lower > 0.0) {
+        if !p.narrow || p.lower.is_nan() || p.lower <= 0.0 {
             return None;
         }
         let contact = p.contact_b?;
