@@ -94,18 +94,40 @@ pub fn point_in_profile(tree: &QueryTree, m: Point2<f64>) -> Inside {
 /// exact margin opens most of the tree (measured: ~24,000 instructions a call on the M_t
 /// frame at eps 1e-6, `certify_overlap`'s samples; see `docs/performance.md`).
 pub fn point_in_profile_capped(tree: &QueryTree, m: Point2<f64>, cap: f64) -> Inside {
+    classify(tree, m, cap).0
+}
+
+/// [`point_in_profile`] with the point of the approximating chain nearest to `m` (at
+/// distance `margin`): the classification, the margin and the foot of the margin come from
+/// one descent. The foot gives the direction in which the margin grows fastest, which the
+/// penetration depth's deepest-point search follows ([`crate::query::penetration`]).
+pub fn point_in_profile_nearest(tree: &QueryTree, m: Point2<f64>) -> (Inside, Point2<f64>) {
+    classify(tree, m, f64::INFINITY)
+}
+
+/// Classification, capped margin and the nearest chain point seen (`m` itself when no
+/// piece is nearer than `cap`).
+fn classify(tree: &QueryTree, m: Point2<f64>, cap: f64) -> (Inside, Point2<f64>) {
     let mut total = 0.0;
     let mut margin = cap;
+    let mut nearest = m;
     // A point on the axis is classified like its neighbours at small rho > 0 (the axis
     // closure of an open profile is interior to the solid, not boundary).
     let w = Point2::new(m.x.max(AXIS_NUDGE * (1.0 + m.coords.norm())), m.y);
     if tree.node_ends.is_empty() {
         for p in &tree.chain {
             total += swept_angle(p, w);
-            margin = margin.min(p.closest_point(m).0);
+            let (d, q) = p.closest_point(m);
+            if d < margin {
+                (margin, nearest) = (d, q);
+            }
         }
     } else {
-        descend(tree, tree.root, w, m, &mut total, &mut margin);
+        let mut near = Nearest {
+            margin: &mut margin,
+            point: &mut nearest,
+        };
+        descend(tree, tree.root, w, m, &mut total, &mut near);
     }
     if tree.kind == ProfileKind::OpenOnAxis {
         if let (Some(first), Some(last)) = (tree.chain.first(), tree.chain.last()) {
@@ -116,10 +138,17 @@ pub fn point_in_profile_capped(tree: &QueryTree, m: Point2<f64>, cap: f64) -> In
             total += swept_angle(&closing, w);
         }
     }
-    Inside {
+    let inside = Inside {
         inside: (total / TAU).round() != 0.0,
         margin,
-    }
+    };
+    (inside, nearest)
+}
+
+/// The smallest distance to the chain seen by a descent, and where.
+struct Nearest<'a> {
+    margin: &'a mut f64,
+    point: &'a mut Point2<f64>,
 }
 
 /// Winding and margin contributions of the pieces under `id` (see [`point_in_profile`]).
@@ -129,14 +158,14 @@ fn descend(
     w: Point2<f64>,
     m: Point2<f64>,
     total: &mut f64,
-    margin: &mut f64,
+    near: &mut Nearest<'_>,
 ) {
     let n = &tree.nodes[id as usize];
     let Some([s, e]) = tree.node_ends[id as usize] else {
         return;
     };
     let (c, r) = (n.bound.center, n.bound.radius);
-    if (w - c).norm() > r && (m - c).norm() - r >= *margin {
+    if (w - c).norm() > r && (m - c).norm() - r >= *near.margin {
         let (a, b) = (s - w, e - w);
         *total += cross2(a, b).atan2(a.dot(&b));
         return;
@@ -144,14 +173,18 @@ fn descend(
     if n.is_leaf() {
         for p in &tree.chain[n.patch_start as usize..n.patch_end as usize] {
             *total += swept_angle(p, w);
-            *margin = margin.min(p.closest_point(m).0);
+            let (d, q) = p.closest_point(m);
+            if d < *near.margin {
+                *near.margin = d;
+                *near.point = q;
+            }
         }
         return;
     }
     // Nearer child first: its margin prunes more of the other.
     let [first, second] = tree.children_nearer_first(id, m);
-    descend(tree, first, w, m, total, margin);
-    descend(tree, second, w, m, total, margin);
+    descend(tree, first, w, m, total, near);
+    descend(tree, second, w, m, total, near);
 }
 
 /// Classifies a point given in the solid's local frame.

@@ -16,6 +16,11 @@
 //! 5. [`angles`]: circle-level solvers: where along a circle a distance is critical or meets
 //!    a level, where a common normal of two tori can be.
 //!
+//!
+//! Above the distance, [`penetration`] bounds the translational penetration depth and the
+//! signed distance of overlapping solids; it calls the distance query's entry points and
+//! the containment tests of [`crate::bvh`], nothing of the levels below.
+//!
 //! Below the query: the solid's hierarchy [`crate::bvh`] (patches, disks, hulls, the tree,
 //! point-in-solid), circle/circle distances [`crate::circle`], and every slack and tolerance
 //! in [`crate::tolerances`]. What a query costs, step by step, and what was tried to make it
@@ -26,6 +31,7 @@ pub mod bound;
 pub mod convex;
 pub mod kernel;
 pub mod leaf;
+pub mod penetration;
 pub mod traverse;
 
 pub use crate::tolerances;
@@ -34,6 +40,8 @@ pub use traverse::{
     distance, distance_cached, query_slack, try_distance, try_distance_cached, Budget, Distance,
     Gradient, QueryCache, QueryError, QueryOptions, Tolerance, TraversalStats,
 };
+
+pub use penetration::{penetration, signed_distance, Penetration, SignedDistance};
 
 pub use crate::bvh::{Patch, ProfileArc, QueryTree};
 pub use kernel::{patch_distance, PatchDistance};

@@ -6,13 +6,14 @@
 //! `translation`. Output points are in A's frame.
 
 pub(crate) mod batch;
+pub(crate) mod signed;
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use nalgebra::{Isometry3, Vector3};
 use revdist::query::traverse::width_limit;
-use revdist::query::{try_distance, Distance, QueryOptions};
+use revdist::query::{signed_distance, try_distance, Distance, QueryOptions, SignedDistance};
 use revdist::request::{
     build_solid, check_eps, check_tolerance, pose_from_quaternion, query_options,
 };
@@ -53,7 +54,8 @@ pub struct Args {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-    /// Batch mode: read JSON lines {"a", "b", "pose_b", "eps", "tolerance", "refine"} from
+    /// Batch mode: read JSON lines {"a", "b", "pose_b", "eps", "tolerance", "refine",
+    /// "signed"} from
     /// this file ("-" for stdin) and write exactly one JSON line per input line, in order,
     /// each with its "line" number; exit status 1 when some line failed.
     #[arg(long, conflicts_with_all = ["a", "b", "pose_b"])]
@@ -64,6 +66,12 @@ pub struct Args {
     /// Add each query's wall time in microseconds ("time_us") to its output.
     #[arg(long)]
     timings: bool,
+    /// Signed distance: for solids not certified apart, also bound the translational
+    /// penetration depth ("penetration": lower, upper, direction, point) and give
+    /// "signed_distance": {lower, upper} (the distance when apart, minus the depth when
+    /// overlapping). The budget and --tolerance apply to the depth's interval.
+    #[arg(long)]
+    signed: bool,
 }
 
 /// Pose as written in JSON.
@@ -90,6 +98,8 @@ struct Request {
     tolerance: Option<f64>,
     #[serde(default)]
     refine: Option<bool>,
+    #[serde(default)]
+    signed: Option<bool>,
 }
 
 /// One result line.
@@ -118,20 +128,28 @@ pub(crate) struct Output {
     #[serde(skip_serializing_if = "Option::is_none")]
     time_us: Option<f64>,
     /// Derivatives of the distance with respect to B's pose (`Distance::gradient`):
-    /// present only when the solids are certified apart.
+    /// present only when the solids are certified apart; with `--signed`, of the signed
+    /// distance (`SignedDistance::gradient`), also when they overlap with a narrow depth
+    /// interval.
     #[serde(skip_serializing_if = "Option::is_none")]
     gradient: Option<GradientJson>,
+    /// `--signed`: the signed distance's certified interval.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    signed_distance: Option<signed::IntervalJson>,
+    /// `--signed`, solids not certified apart: the penetration depth's interval.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    penetration: Option<signed::PenetrationJson>,
 }
 
 /// `Distance::gradient` as written in JSON (A's frame).
 #[derive(Debug, Serialize)]
 pub(crate) struct GradientJson {
     /// Unit normal (point_b - point_a) / |point_b - point_a|.
-    normal: [f64; 3],
+    pub(crate) normal: [f64; 3],
     /// d distance / d translation of B.
-    translation: [f64; 3],
+    pub(crate) translation: [f64; 3],
     /// d distance / d rotation vector of B about its frame origin.
-    rotation: [f64; 3],
+    pub(crate) rotation: [f64; 3],
 }
 
 impl Output {
@@ -167,6 +185,8 @@ impl From<&Distance> for Output {
             width_limit: "met",
             time_us: None,
             gradient: None,
+            signed_distance: None,
+            penetration: None,
         }
     }
 }
@@ -231,6 +251,7 @@ pub fn run(args: Args) -> CmdResult {
             default_eps: args.eps,
             opts,
             timings: args.timings,
+            signed: args.signed,
             threads,
         };
         return batch::run(path, &settings);
@@ -247,11 +268,14 @@ pub fn run(args: Args) -> CmdResult {
     let sa = cache.get(a, args.eps)?;
     let sb = cache.get(b, args.eps)?.with_pose(pose);
     let started = std::time::Instant::now();
-    let d = try_distance(&sa, &sb, &opts).map_err(|e| e.to_string())?;
+    let (d, sd) = query(&sa, &sb, &opts, args.signed)?;
     let time_us = started.elapsed().as_secs_f64() * 1e6;
     let limit = width_limit(&sa, &sb, &opts, &d).name();
     if args.json {
         let mut out = Output::from(&d).with_gradient(&d, &pose.translation.vector);
+        if let Some(s) = &sd {
+            out = out.with_signed(s, &pose.translation.vector);
+        }
         out.width_limit = limit;
         out.time_us = args.timings.then_some(time_us);
         println!("{}", serde_json::to_string(&out)?);
@@ -267,7 +291,14 @@ pub fn run(args: Args) -> CmdResult {
             d.point_b.x, d.point_b.y, d.point_b.z
         );
         println!("overlap   {}", d.overlap);
-        if let Some(g) = d.gradient(&pose.translation.vector.into()) {
+        if let Some(s) = &sd {
+            signed::print_text(s);
+        }
+        let gradient = match &sd {
+            Some(s) => s.gradient(&pose.translation.vector.into()),
+            None => d.gradient(&pose.translation.vector.into()),
+        };
+        if let Some(g) = gradient {
             let v = |x: nalgebra::Vector3<f64>| format!("{:.9} {:.9} {:.9}", x.x, x.y, x.z);
             println!("d/dt_B    {}", v(g.translation));
             println!("d/dr_B    {}", v(g.rotation));
@@ -303,7 +334,7 @@ pub(crate) fn prepare_request(
     line: &str,
     settings: &batch::Settings,
     cache: &SolidCache,
-) -> Result<(Solid, Solid, QueryOptions), String> {
+) -> Result<(Solid, Solid, QueryOptions, bool), String> {
     let req: Request = serde_json::from_str(line).map_err(|e| format!("bad request: {e}"))?;
     let eps = check_eps(req.eps.unwrap_or(settings.default_eps)).map_err(|e| e.to_string())?;
     let mut opts = settings.opts;
@@ -313,13 +344,29 @@ pub(crate) fn prepare_request(
     if let Some(r) = req.refine {
         opts.refine = r;
     }
+    let signed = req.signed.unwrap_or(settings.signed);
     let pose = match &req.pose_b {
         Some(p) => pose_from_json(p).map_err(|e| format!("pose_b: {e}"))?,
         None => Isometry3::identity(),
     };
     let a = cache.get(&req.a, eps)?;
     let b = cache.get(&req.b, eps)?.with_pose(pose);
-    Ok((a, b, opts))
+    Ok((a, b, opts, signed))
+}
+
+/// The distance, and with `signed` the signed distance (which holds the same distance).
+fn query(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+    signed: bool,
+) -> Result<(Distance, Option<SignedDistance>), String> {
+    if signed {
+        let s = signed_distance(a, b, opts).map_err(|e| e.to_string())?;
+        Ok((s.distance.clone(), Some(s)))
+    } else {
+        Ok((try_distance(a, b, opts).map_err(|e| e.to_string())?, None))
+    }
 }
 
 /// One batch line's output: its result with its line number, or its error.
@@ -329,11 +376,14 @@ pub(crate) fn answer_line(
     settings: &batch::Settings,
     cache: &SolidCache,
 ) -> Result<String, String> {
-    let (a, b, opts) = prepare_request(line?, settings, cache)?;
+    let (a, b, opts, signed) = prepare_request(line?, settings, cache)?;
     let started = std::time::Instant::now();
-    let d = try_distance(&a, &b, &opts).map_err(|e| e.to_string())?;
+    let (d, sd) = query(&a, &b, &opts, signed)?;
     let time_us = started.elapsed().as_secs_f64() * 1e6;
     let mut out = Output::from(&d).with_gradient(&d, &b.pose.translation.vector);
+    if let Some(s) = &sd {
+        out = out.with_signed(s, &b.pose.translation.vector);
+    }
     out.line = Some(number);
     out.width_limit = width_limit(&a, &b, &opts, &d).name();
     out.time_us = settings.timings.then_some(time_us);

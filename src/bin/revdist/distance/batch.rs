@@ -41,6 +41,9 @@ pub struct Settings {
     pub opts: QueryOptions,
     /// Add `"time_us"` to each result.
     pub timings: bool,
+    /// Add the signed distance and penetration depth (`--signed`) to lines that give no
+    /// `"signed"` of their own.
+    pub signed: bool,
     /// Worker threads.
     pub threads: usize,
 }

@@ -1,0 +1,209 @@
+//! The deepest common point of two posed solids: a point `x` inside both whose clearances
+//! `d(x, dA) + d(x, dB)` sum to as much as a local ascent finds, and the certified lower
+//! bound of the depth they give (module doc of
+//! [`crate::query::penetration`]).
+//!
+//! Everything is in A's frame; `pos_ab` places B there. A probe classifies `x` against both
+//! approximating chains ([`point_in_profile_nearest`]) and returns each signed margin
+//! (positive inside) with the nearest surface point. The ascent maximises
+//! `f(x) = min(s_A(x), s_B(x))`, then the certificate `s_A + s_B`, with a few moves per step: the midpoint of the
+//! two nearest surface points (the centre of the ball touching both, exact for two
+//! spheres), a step along the weaker side's gradient (away from its nearest point), and a
+//! step along the sum of both gradients; a step that gains nothing halves the step length.
+//! Only the final point's evaluation matters for the certificate.
+
+use crate::bvh::containment::point_in_profile_nearest;
+use crate::bvh::QueryTree;
+use nalgebra::{Isometry3, Point2, Point3, Vector3};
+
+/// Steps of one ascent (each evaluates three candidates, two tree descents each).
+const MAX_STEPS: usize = 60;
+
+/// Weight of the smaller clearance added to the sum in the second ascent (see
+/// [`Pair::ascend`]): the maximiser of the weighted objective loses at most this share of
+/// the smaller clearance from the best sum.
+const BALANCE_SHARE: f64 = 1e-3;
+
+/// One side of a probe: signed margin and nearest point of one solid's approximating
+/// surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Side {
+    /// Distance to the approximating surface, positive inside the approximating solid.
+    pub signed_margin: f64,
+    /// Nearest point of the approximating surface (A's frame).
+    pub nearest: Point3<f64>,
+}
+
+impl Side {
+    /// Unit direction in which the signed margin grows fastest at `x` (zero when `x` is on
+    /// the surface).
+    pub fn gradient(&self, x: &Point3<f64>) -> Vector3<f64> {
+        let away = x - self.nearest;
+        let len = away.norm();
+        if !(len > 0.0 && len.is_finite()) {
+            return Vector3::zeros();
+        }
+        away * (self.signed_margin.signum() / len)
+    }
+}
+
+/// A point classified against both solids.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Probe {
+    /// The point (A's frame).
+    pub x: Point3<f64>,
+    pub a: Side,
+    pub b: Side,
+}
+
+impl Probe {
+    /// The smaller signed margin: the objective of the ascent.
+    pub fn depth(&self) -> f64 {
+        self.a.signed_margin.min(self.b.signed_margin)
+    }
+
+    /// The certified lower bound of the depth at `x` (module doc of
+    /// [`crate::query::penetration`]): the sum of the true clearances, each its margin less
+    /// the tree's bound (`e_a`, `e_b`) and the rounding `slack`; `None` unless both are
+    /// positive (then `x` is inside both true solids).
+    pub fn certified_bound(&self, e_a: f64, e_b: f64, slack: f64) -> Option<f64> {
+        let ca = self.a.signed_margin - e_a - slack;
+        let cb = self.b.signed_margin - e_b - slack;
+        (ca > 0.0 && cb > 0.0).then_some(ca + cb)
+    }
+}
+
+/// Signed margin and nearest surface point of `x` (the tree's own frame).
+fn side(tree: &QueryTree, x: &Point3<f64>) -> Side {
+    let rho = x.x.hypot(x.y);
+    let (c, q) = point_in_profile_nearest(tree, Point2::new(rho, x.z));
+    // The nearest surface point lies in x's meridian half-plane; on the axis any
+    // half-plane serves.
+    let (cos, sin) = if rho > 0.0 {
+        (x.x / rho, x.y / rho)
+    } else {
+        (1.0, 0.0)
+    };
+    Side {
+        signed_margin: if c.inside { c.margin } else { -c.margin },
+        nearest: Point3::new(q.x * cos, q.x * sin, q.y),
+    }
+}
+
+/// Two trees in A's frame, ready to probe points.
+pub struct Pair<'a> {
+    pub ta: &'a QueryTree,
+    pub tb: &'a QueryTree,
+    pub pos_ab: Isometry3<f64>,
+    pos_ba: Isometry3<f64>,
+    /// Probes evaluated so far.
+    pub probes: usize,
+}
+
+impl<'a> Pair<'a> {
+    pub fn new(ta: &'a QueryTree, tb: &'a QueryTree, pos_ab: Isometry3<f64>) -> Self {
+        Pair {
+            ta,
+            tb,
+            pos_ab,
+            pos_ba: pos_ab.inverse(),
+            probes: 0,
+        }
+    }
+
+    /// Classifies `x` (A's frame) against both solids.
+    pub fn probe(&mut self, x: Point3<f64>) -> Probe {
+        self.probes += 1;
+        let a = side(self.ta, &x);
+        let b_local = side(self.tb, &(self.pos_ba * x));
+        let b = Side {
+            signed_margin: b_local.signed_margin,
+            nearest: self.pos_ab * b_local.nearest,
+        };
+        Probe { x, a, b }
+    }
+
+    /// The common point with the best certificate an ascent from `seed` finds: first the
+    /// smaller margin is raised (which brings the point inside both solids, to the centre of
+    /// the largest ball touching both surfaces), then the sum of the margins (the
+    /// certificate, [`Probe::certified_bound`] with the trees' bounds `e_a`, `e_b` and the
+    /// rounding `slack`) with both kept positive. The sum is flat along the segment between
+    /// two nearest points (two balls), so a small share of the smaller clearance is added to
+    /// keep the point off the surfaces. Stops when the step falls below `step_tol`.
+    pub fn ascend(
+        &mut self,
+        seed: Point3<f64>,
+        step_tol: f64,
+        e_a: f64,
+        e_b: f64,
+        slack: f64,
+    ) -> Probe {
+        let first = self.climb(seed, step_tol, Probe::depth);
+        let second = self.climb(first.x, step_tol, |p| {
+            let ca = p.a.signed_margin - e_a - slack;
+            let cb = p.b.signed_margin - e_b - slack;
+            if ca > 0.0 && cb > 0.0 {
+                ca + cb + BALANCE_SHARE * ca.min(cb)
+            } else {
+                f64::NEG_INFINITY
+            }
+        });
+        let bound = |p: &Probe| p.certified_bound(e_a, e_b, slack).unwrap_or(0.0);
+        if bound(&second) >= bound(&first) {
+            second
+        } else {
+            first
+        }
+    }
+
+    /// Pattern ascent of `objective` from `seed` with the moves of the module doc.
+    fn climb(
+        &mut self,
+        seed: Point3<f64>,
+        step_tol: f64,
+        objective: impl Fn(&Probe) -> f64,
+    ) -> Probe {
+        let mut best = self.probe(seed);
+        let mut value = objective(&best);
+        let mut h = best.depth().abs().max(step_tol);
+        for _ in 0..MAX_STEPS {
+            if h < step_tol {
+                break;
+            }
+            let x = best.x;
+            let (ga, gb) = (best.a.gradient(&x), best.b.gradient(&x));
+            let (sa, sb) = (best.a.signed_margin, best.b.signed_margin);
+            let weak = if sa <= sb { ga } else { gb };
+            // Balancing the two margins along the weaker gradient needs about half their
+            // difference; at least the current step.
+            let balance = (0.5 * (sa - sb).abs()).max(h);
+            let sum = ga + gb;
+            let mut candidates = vec![
+                nalgebra::center(&best.a.nearest, &best.b.nearest),
+                x + weak * balance,
+                x + weak * h,
+            ];
+            if sum.norm() > 1e-12 {
+                candidates.push(x + sum.normalize() * h);
+            }
+            let mut improved = false;
+            for c in candidates {
+                if !c.coords.iter().all(|v| v.is_finite()) {
+                    continue;
+                }
+                let p = self.probe(c);
+                let v = objective(&p);
+                if v > value {
+                    let moved = (p.x - best.x).norm();
+                    (best, value) = (p, v);
+                    h = moved.max(step_tol);
+                    improved = true;
+                }
+            }
+            if !improved {
+                h *= 0.5;
+            }
+        }
+        best
+    }
+}

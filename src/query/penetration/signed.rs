@@ -1,0 +1,238 @@
+//! The public entry points: [`penetration`] (the certified interval of the translational
+//! penetration depth) and [`signed_distance`] (the distance when apart, minus the depth
+//! when overlapping), with the signed distance's gradient where it is one.
+
+use super::deepest::Pair;
+use super::separate::Search;
+use crate::query::traverse::distance::{
+    check_query, distance, query_slack, Distance, QueryError, QueryOptions, Tolerance,
+};
+use crate::query::traverse::gradient::Gradient;
+use crate::query::traverse::search::Budget;
+use crate::solid::Solid;
+use nalgebra::{Point3, Vector3};
+use std::time::Instant;
+
+/// Share of the trees' eps below which the deepest-point ascent stops refining: the lower
+/// bound `2 rho` is then within a few percent of the trees' own error `2 e` of what the
+/// local maximum gives.
+const ASCENT_STEP_SHARE: f64 = 0.02;
+
+/// Depth relative to which an interval counts as narrow for the gradient (the interval
+/// is narrow when `upper - lower <= max(2 (eps_a + eps_b), NARROW_REL * upper)`).
+pub const NARROW_REL: f64 = 0.05;
+
+/// Counters of one penetration query.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct PenetrationStats {
+    /// Points classified against both solids by the deepest-point ascent.
+    pub probes: usize,
+    /// Distance queries, the first (at the given pose) included.
+    pub distance_queries: usize,
+    /// The time budget ran out before the interval met the requested width.
+    pub budget_exhausted: bool,
+}
+
+/// The certified interval of the penetration depth (module doc of
+/// [`crate::query::penetration`]). Points and directions are in the world frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Penetration {
+    /// Certified lower bound: the sum of the true clearances of a point inside both solids
+    /// (0 when none was certified, e.g. for solids apart or touching within the trees'
+    /// accuracy).
+    pub lower: f64,
+    /// Certified upper bound: B moved by `s * direction`, any `s > upper`, is apart from A.
+    pub upper: f64,
+    /// Unit translation of B that achieves `upper` (zero when the solids are apart).
+    pub direction: Vector3<f64>,
+    /// The common point whose clearances give `lower`, when there is one.
+    pub point: Option<Point3<f64>>,
+    /// The point of B (at its pose) that touches A last along `direction`: the contact of
+    /// the separating translation, used by the gradient.
+    pub contact_b: Option<Point3<f64>>,
+    /// `upper - lower <= max(2 (eps_a + eps_b), NARROW_REL * upper)`: narrow enough for
+    /// [`SignedDistance::gradient`].
+    pub narrow: bool,
+    pub stats: PenetrationStats,
+}
+
+/// The signed distance: the distance when apart, `-PD` when overlapping, as a certified
+/// interval, with the distance query and (unless certified apart) the penetration query
+/// it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SignedDistance {
+    pub lower: f64,
+    pub upper: f64,
+    pub distance: Distance,
+    pub penetration: Option<Penetration>,
+}
+
+impl SignedDistance {
+    /// The gradient with respect to B's pose (world frame; B's frame origin at `origin_b`).
+    ///
+    /// Apart: the distance's gradient ([`Distance::gradient`]). Overlapping, with a narrow
+    /// interval: moving B by `v` changes the depth by `-direction . v` to first order where
+    /// the minimal separating translation is unique and parallel to its contact normal
+    /// (`PD(v) = min |t - v|` over separating `t`), so the signed distance's derivative is
+    /// `direction` in translation and `(contact_b - origin_b) x direction` in a rotation
+    /// vector about B's origin (the contact point moving with B). Where several
+    /// translations are minimal the depth has no gradient and this is one of its one-sided
+    /// derivatives; the direction is that of the upper bound's translation, whose angle to
+    /// the minimal one shrinks with the interval's width. `None` when the interval is not
+    /// narrow or the solids touch within the trees' accuracy.
+    pub fn gradient(&self, origin_b: &Point3<f64>) -> Option<Gradient> {
+        if self.distance.lower > 0.0 {
+            return self.distance.gradient(origin_b);
+        }
+        let p = self.penetration.as_ref()?;
+        if !p.narrow || p.lower.is_nan() || p.lower <= 0.0 {
+            return None;
+        }
+        let contact = p.contact_b?;
+        let u = p.direction;
+        Some(Gradient {
+            normal: u,
+            translation: u,
+            rotation: (contact - origin_b).cross(&u),
+        })
+    }
+}
+
+/// The penetration depth of A and B ([`penetration`] after a distance query `d` of the
+/// same pair that did not certify them apart).
+fn penetration_after(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+    d: &Distance,
+    started: Instant,
+) -> Penetration {
+    let pos_ab = a.relative_pose(b);
+    let slack = query_slack(&a.tree, &b.tree, &pos_ab);
+    let (e_a, e_b) = (a.tree.eps, b.tree.eps);
+    let eps_sum = a.tree.target_eps + b.tree.target_eps;
+    let deadline = opts.budget.max_time.map(|t| started + t);
+    let to_local = a.pose.inverse();
+    // The distance's overlap point, or the middle of its witnesses when undecided.
+    let seed = to_local * nalgebra::center(&d.point_a, &d.point_b);
+    let mut pair = Pair::new(&a.tree, &b.tree, pos_ab);
+    let deepest = pair.ascend(
+        seed,
+        (ASCENT_STEP_SHARE * (e_a + e_b)).max(slack),
+        e_a,
+        e_b,
+        slack,
+    );
+    let certified = deepest.certified_bound(e_a, e_b, slack);
+    let lower = certified.unwrap_or(0.0);
+
+    let width = match opts.tolerance {
+        Tolerance::Trees => 2.0 * eps_sum,
+        Tolerance::Absolute(t) => t.max(0.0),
+    };
+    let mut dist_opts = *opts;
+    dist_opts.refine = false;
+    dist_opts.budget = Budget {
+        max_time: None,
+        ..opts.budget
+    };
+    let mut search = Search::new(a, b, dist_opts, deadline, lower + width);
+    search.offer_bounding_balls();
+    // First the translation moving B's nearest surface point onto A's (exact for two
+    // balls), then the margins' own gradients, then the two axes.
+    let push = deepest.a.nearest - deepest.b.nearest;
+    search.along(push, push.norm());
+    let (ga, gb) = (
+        deepest.a.gradient(&deepest.x),
+        deepest.b.gradient(&deepest.x),
+    );
+    let axis_b = pos_ab.rotation * Vector3::z();
+    for u in [gb, -ga, Vector3::z(), -Vector3::z(), axis_b, -axis_b] {
+        search.along(u, lower.max(0.5 * push.norm()));
+    }
+    let best = search.best.expect("the bounding balls always give a bound");
+    let upper = best.upper.max(lower);
+    let len = best.translation.norm();
+    let direction = if len > 0.0 {
+        a.pose.rotation * (best.translation / len)
+    } else {
+        Vector3::zeros()
+    };
+    Penetration {
+        lower,
+        upper,
+        direction,
+        point: certified.map(|_| a.pose * deepest.x),
+        contact_b: best.contact_b.map(|p| a.pose * p),
+        narrow: upper - lower <= (2.0 * eps_sum).max(NARROW_REL * upper),
+        stats: PenetrationStats {
+            probes: pair.probes,
+            distance_queries: 1 + search.queries,
+            budget_exhausted: search.budget_exhausted || d.stats.budget_exhausted,
+        },
+    }
+}
+
+/// An answer for solids certified apart: depth 0.
+fn apart() -> Penetration {
+    Penetration {
+        lower: 0.0,
+        upper: 0.0,
+        direction: Vector3::zeros(),
+        point: None,
+        contact_b: None,
+        narrow: true,
+        stats: PenetrationStats {
+            distance_queries: 1,
+            ..PenetrationStats::default()
+        },
+    }
+}
+
+/// Certified interval of the translational penetration depth of two posed solids
+/// (module doc of [`crate::query::penetration`]): `lower <= PD <= upper`.
+///
+/// `opts.tolerance` asks for `upper - lower` (the default, [`Tolerance::Trees`], for
+/// `2 (eps_a + eps_b)`; the lower bound alone loses up to twice the larger leaf bound);
+/// `opts.budget.max_time` bounds the whole query, `max_node_pairs` each distance query.
+/// Solids certified apart have depth `[0, 0]`.
+///
+/// # Errors
+/// [`QueryError`] for poses outside the representable range.
+pub fn penetration(a: &Solid, b: &Solid, opts: &QueryOptions) -> Result<Penetration, QueryError> {
+    Ok(signed_distance(a, b, opts)?
+        .penetration
+        .unwrap_or_else(apart))
+}
+
+/// Certified interval of the signed distance: `[lower, upper]` of the distance when the
+/// solids are certified apart; `[-PD upper, -PD lower]` when they overlap; and
+/// `[-PD upper, distance upper]` when they touch within the trees' accuracy.
+///
+/// # Errors
+/// [`QueryError`] for poses outside the representable range.
+pub fn signed_distance(
+    a: &Solid,
+    b: &Solid,
+    opts: &QueryOptions,
+) -> Result<SignedDistance, QueryError> {
+    check_query(a, b)?;
+    let started = Instant::now();
+    let d = distance(a, b, opts);
+    if d.lower > 0.0 {
+        return Ok(SignedDistance {
+            lower: d.lower,
+            upper: d.upper,
+            distance: d,
+            penetration: None,
+        });
+    }
+    let p = penetration_after(a, b, opts, &d, started);
+    let overlap = d.overlap || p.lower > 0.0;
+    Ok(SignedDistance {
+        lower: -p.upper,
+        upper: if overlap { -p.lower } else { d.upper },
+        distance: d,
+        penetration: Some(p),
+    })
+}

@@ -1,0 +1,207 @@
+//! Exact cases of the penetration depth: two balls (`r_1 + r_2 - |c_1 - c_2|`), a ball
+//! against the side of a cylinder (`r - (|c_xy| - R)` away from the rims), coaxial stacked
+//! cylinders (the axial overlap), solids apart (0); and on the paper's models, the
+//! certificates themselves re-checked (the clearances of the common point, the separated pose).
+
+use super::*;
+use crate::bvh::containment::point_in_solid;
+use crate::models::model;
+use crate::models::primitives::{arc, deg};
+use crate::profile::Profile;
+use crate::query::{distance, QueryOptions};
+use crate::solid::Solid;
+use crate::test_rng::SplitMix64;
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use std::sync::Arc;
+
+fn ball(r: f64, eps: f64) -> Solid {
+    let p = Profile::new(
+        "ball",
+        vec![arc([0.0, 0.0], r, deg(-90.0), deg(90.0)).unwrap()],
+    )
+    .unwrap();
+    Solid::from_profile(Arc::new(p), eps).unwrap()
+}
+
+fn named(name: &str, eps: f64) -> Solid {
+    Solid::from_profile(Arc::new(model(name).unwrap()), eps).unwrap()
+}
+
+fn random_rotation(rng: &mut SplitMix64) -> UnitQuaternion<f64> {
+    let axis = Vector3::new(
+        rng.range(-1.0, 1.0),
+        rng.range(-1.0, 1.0),
+        rng.range(-1.0, 1.0),
+    );
+    UnitQuaternion::from_scaled_axis(axis * 3.0)
+}
+
+/// The target width for the exact cases.
+fn target(a: &Solid, b: &Solid, pd: f64) -> f64 {
+    (2.0 * (a.tree.target_eps + b.tree.target_eps)).max(0.05 * pd)
+}
+
+fn check(a: &Solid, b: &Solid, exact: f64, what: &str) -> Penetration {
+    let p = penetration(a, b, &QueryOptions::default()).unwrap();
+    assert!(
+        p.lower <= exact && exact <= p.upper,
+        "{what}: exact {exact} outside [{}, {}]",
+        p.lower,
+        p.upper
+    );
+    assert!(
+        p.upper - p.lower <= target(a, b, exact),
+        "{what}: width {:e} above target {:e} (exact {exact}, [{}, {}])",
+        p.upper - p.lower,
+        target(a, b, exact),
+        p.lower,
+        p.upper
+    );
+    p
+}
+
+#[test]
+fn two_balls() {
+    let mut rng = SplitMix64(4001);
+    for k in 0..40 {
+        let eps = [1e-3, 1e-4, 1e-5][k % 3];
+        let (r1, r2) = (rng.range(0.2, 1.0), rng.range(0.2, 1.0));
+        let d = rng.range(0.05 * (r1 + r2), (r1 + r2) * 0.999);
+        let dir = Vector3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        )
+        .normalize();
+        let ca = Vector3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
+        let a = ball(r1, eps).with_pose(Isometry3::from_parts(
+            Translation3::from(ca),
+            random_rotation(&mut rng),
+        ));
+        let b = ball(r2, eps).with_pose(Isometry3::from_parts(
+            Translation3::from(ca + dir * d),
+            random_rotation(&mut rng),
+        ));
+        let p = check(&a, &b, r1 + r2 - d, &format!("balls {r1} {r2} at {d}"));
+        assert!(
+            p.direction.dot(&dir) > 0.99,
+            "direction {:?} vs {dir:?}",
+            p.direction
+        );
+    }
+}
+
+#[test]
+fn ball_against_cylinder_side() {
+    // The cylinder model: radius 0.5, z in [0, 1.5].
+    let mut rng = SplitMix64(4002);
+    for k in 0..30 {
+        let eps = [1e-3, 1e-4][k % 2];
+        let cyl = named("cylinder", eps);
+        let r = rng.range(0.1, 0.3);
+        let depth = rng.range(1e-3, 0.5 * r);
+        let th = rng.range(0.0, std::f64::consts::TAU);
+        let c = Vector3::new(
+            (0.5 + r - depth) * th.cos(),
+            (0.5 + r - depth) * th.sin(),
+            rng.range(0.6, 0.9),
+        );
+        let b = ball(r, eps).with_pose(Isometry3::from_parts(
+            Translation3::from(c),
+            random_rotation(&mut rng),
+        ));
+        check(&cyl, &b, depth, &format!("ball {r} depth {depth}"));
+    }
+}
+
+#[test]
+fn coaxial_stacked_cylinders() {
+    // B on top of A with an axial overlap delta: PD = delta (sideways needs 1.0).
+    let mut rng = SplitMix64(4003);
+    for k in 0..12 {
+        let eps = [1e-3, 1e-4][k % 2];
+        let cyl = named("cylinder", eps);
+        let delta = rng.range(1e-3, 0.3);
+        let b = cyl.with_pose(Isometry3::from_parts(
+            Translation3::new(0.0, 0.0, 1.5 - delta),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), rng.range(0.0, 6.0)),
+        ));
+        let p = check(&cyl, &b, delta, &format!("stacked delta {delta}"));
+        assert!(p.direction.z > 0.99, "{:?}", p.direction);
+    }
+}
+
+#[test]
+fn apart_solids_have_depth_zero() {
+    let a = named("pawn", 1e-4);
+    let b = named("cup", 1e-4).with_pose(Isometry3::translation(3.0, 0.0, 0.0));
+    let p = penetration(&a, &b, &QueryOptions::default()).unwrap();
+    assert_eq!((p.lower, p.upper), (0.0, 0.0));
+    let s = signed_distance(&a, &b, &QueryOptions::default()).unwrap();
+    assert!(s.lower > 0.0 && s.lower <= s.upper && s.penetration.is_none());
+}
+
+/// Random overlapping poses of the paper's models: both certificates re-checked from the
+/// outside (`point` classified inside both solids with clearances summing to at least
+/// `lower`; B moved just past `upper` along `direction` certified apart).
+#[test]
+fn certificates_hold_on_models() {
+    let mut rng = SplitMix64(4004);
+    let names = [
+        "pawn",
+        "cup",
+        "bottle",
+        "lightmill",
+        "table",
+        "pawn_ff",
+        "cup_ff",
+    ];
+    let mut overlapping = 0;
+    for k in 0..60 {
+        let eps = [1e-3, 1e-4][k % 2];
+        let a = named(names[k % names.len()], eps);
+        let b = named(names[(k / 2 + 3) % names.len()], eps).with_pose(Isometry3::from_parts(
+            Translation3::new(
+                rng.range(-0.6, 0.6),
+                rng.range(-0.6, 0.6),
+                rng.range(-0.6, 0.6),
+            ),
+            random_rotation(&mut rng),
+        ));
+        let s = signed_distance(&a, &b, &QueryOptions::default()).unwrap();
+        assert!(s.lower <= s.upper);
+        let Some(p) = s.penetration else { continue };
+        assert!(p.lower <= p.upper && p.upper.is_finite());
+        if let Some(x) = p.point {
+            overlapping += 1;
+            let in_a = point_in_solid(&a.tree, &(a.pose.inverse() * x));
+            let in_b = point_in_solid(&b.tree, &(b.pose.inverse() * x));
+            assert!(in_a.inside && in_a.margin > a.tree.eps);
+            assert!(in_b.inside && in_b.margin > b.tree.eps);
+            let sum = in_a.margin - a.tree.eps + in_b.margin - b.tree.eps;
+            assert!(
+                p.lower <= sum,
+                "case {k}: lower {} above the clearances {sum}",
+                p.lower
+            );
+        }
+        let moved = b.with_pose(Isometry3::from_parts(
+            Translation3::from(
+                b.pose.translation.vector + p.direction * (p.upper * (1.0 + 1e-9) + 1e-9),
+            ),
+            b.pose.rotation,
+        ));
+        if p.direction.norm() > 0.0 {
+            let d = distance(&a, &moved, &QueryOptions::default());
+            assert!(
+                !d.overlap,
+                "case {k}: B moved past the upper bound still overlaps"
+            );
+        }
+    }
+    assert!(overlapping > 20, "only {overlapping} overlapping cases");
+}
