@@ -16,6 +16,7 @@
 //! probe certifies a contact (grazing at the query's accuracy, or a budget ran out) the
 //! answer is [`ToiOutcome::Undecided`]: apart before `t_lower`, nothing certified after.
 
+use super::contact::{CertifiedContact, ContactTest, Witness};
 use super::motion::{Motion, MotionError, MOTION_ROUNDING_REL};
 use super::speed::speed_bound;
 use crate::query::{
@@ -118,6 +119,8 @@ pub struct TimeOfImpact {
     pub queries: usize,
     /// Queries of the advancement alone.
     pub steps: usize,
+    /// Contact certificates tried from carried witnesses ([`super::contact`]; not queries).
+    pub certificates: usize,
     /// The speed bound `L` at `t = 0` ([`super::speed`]).
     pub speed_bound: f64,
     /// Traversal counters summed over every query.
@@ -164,6 +167,7 @@ struct Search<'a> {
     opts: ToiOptions,
     cache: QueryCache,
     queries: usize,
+    certificates: usize,
     stats: TraversalStats,
 }
 
@@ -235,6 +239,7 @@ pub fn time_of_impact(
         opts: *opts,
         cache: QueryCache::default(),
         queries: 0,
+        certificates: 0,
         stats: TraversalStats::default(),
     };
     let dist = opts.contact_distance;
@@ -247,6 +252,7 @@ pub fn time_of_impact(
             contact,
             queries: s.queries,
             steps,
+            certificates: s.certificates,
             speed_bound: speed0,
             stats: s.stats,
         };
@@ -263,6 +269,7 @@ pub fn time_of_impact(
     };
     // Advancement: apart on [0, t).
     let mut t = 0.0_f64;
+    let mut witness: Witness;
     loop {
         if !s.budget_left() {
             return Ok(answer(&s, ToiOutcome::Undecided, t, None, None, s.queries));
@@ -271,6 +278,7 @@ pub fn time_of_impact(
         if p.upper <= dist {
             return Ok(contact_at(&s, t, p));
         }
+        witness = Witness::new(&p.distance, &ma.pose_at(t), &mb.pose_at(t));
         let speed = speed_bound(ma, s.ra, mb, s.rb, t);
         let step = |p: &Probe| {
             if speed > 0.0 {
@@ -284,6 +292,7 @@ pub fn time_of_impact(
             if p.upper <= dist {
                 return Ok(contact_at(&s, t, p));
             }
+            witness = Witness::new(&p.distance, &ma.pose_at(t), &mb.pose_at(t));
         }
         if p.lower > dist {
             let h = step(&p);
@@ -299,15 +308,53 @@ pub fn time_of_impact(
         break;
     }
     let steps = s.queries;
-    // Stalled at t: look for a certified contact after it.
+    // Stalled at t: a contact certified from the carried witnesses first.
+    let test = ContactTest {
+        a,
+        b,
+        ma,
+        mb,
+        ra: s.ra,
+        rb: s.rb,
+        contact_distance: dist,
+    };
+    {
+        let speed = speed_bound(ma, s.ra, mb, s.rb, t);
+        let even = if speed > 0.0 {
+            (a.tree.eps + b.tree.eps) / speed
+        } else {
+            1.0
+        };
+        if let Some((hi, c)) = carried_contact(
+            &test,
+            &witness,
+            t,
+            even,
+            opts.time_tolerance,
+            &mut s.certificates,
+        ) {
+            return Ok(answer(
+                &s,
+                ToiOutcome::Contact,
+                t,
+                Some(hi),
+                Some(contact_distance_of(&c)),
+                steps,
+            ));
+        }
+    }
+    // Then distance queries at tolerance 0 (their overlap certificates search both solids).
+    let contact_probe = |s: &mut Search, at: f64| -> Result<Option<Distance>, ToiError> {
+        let p = s.probe(at, true)?;
+        Ok((p.upper <= dist).then_some(p.distance))
+    };
     let mut h = opts.time_tolerance;
     let mut before = t;
     let mut found: Option<(f64, Distance)> = None;
     while s.budget_left() {
         let probe_t = (t + h).min(1.0);
-        let p = s.probe(probe_t, true)?;
-        if p.upper <= dist {
-            found = Some((probe_t, p.distance));
+        if let Some(d) = contact_probe(&mut s, probe_t)? {
+            found = Some((probe_t, d));
             break;
         }
         if probe_t >= 1.0 {
@@ -323,12 +370,9 @@ pub fn time_of_impact(
     let mut lo = before;
     while hi - t > opts.time_tolerance && hi - lo > opts.time_tolerance && s.budget_left() {
         let mid = 0.5 * (lo + hi);
-        let p = s.probe(mid, true)?;
-        if p.upper <= dist {
-            hi = mid;
-            hit = p.distance;
-        } else {
-            lo = mid;
+        match contact_probe(&mut s, mid)? {
+            Some(d) => (hi, hit) = (mid, d),
+            None => lo = mid,
         }
     }
     Ok(answer(
@@ -339,4 +383,63 @@ pub fn time_of_impact(
         Some(hit),
         steps,
     ))
+}
+
+/// Evenly spaced tries of the carried certificate before the steps start doubling: at a
+/// stall the distance is within a few eps of contact, and a thin overlap window (a wall
+/// crossed at an angle) can be shorter than a doubled step.
+const EVEN_TRIES: usize = 64;
+
+/// The first time after `t` at which the carried witnesses certify a contact
+/// ([`super::contact`]): [`EVEN_TRIES`] steps of `even` (the time the distance needs to change
+/// by the trees' eps at the speed bound), then doubling steps, then bisection down to `h`;
+/// `None` when no time up to 1 certifies one.
+fn carried_contact(
+    test: &ContactTest,
+    w: &Witness,
+    t: f64,
+    even: f64,
+    h: f64,
+    count: &mut usize,
+) -> Option<(f64, CertifiedContact)> {
+    let mut certify = |at: f64| {
+        *count += 1;
+        test.certify(at, w)
+    };
+    let (mut step, mut lo, mut tries) = (even.max(h), t, 0);
+    let (mut hi, mut hit) = loop {
+        let at = (lo + step).min(1.0);
+        if let Some(c) = certify(at) {
+            break (at, c);
+        }
+        if at >= 1.0 {
+            return None;
+        }
+        lo = at;
+        tries += 1;
+        if tries >= EVEN_TRIES {
+            step *= 2.0;
+        }
+    };
+    while hi - lo > h && hi - t > h {
+        let mid = 0.5 * (lo + hi);
+        match certify(mid) {
+            Some(c) => (hi, hit) = (mid, c),
+            None => lo = mid,
+        }
+    }
+    Some((hi, hit))
+}
+
+/// A carried certificate as the answer's contact query.
+fn contact_distance_of(c: &CertifiedContact) -> Distance {
+    Distance {
+        value: c.upper,
+        lower: 0.0,
+        upper: c.upper,
+        point_a: c.point_a,
+        point_b: c.point_b,
+        overlap: c.upper == 0.0,
+        stats: TraversalStats::default(),
+    }
 }

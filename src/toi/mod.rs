@@ -10,6 +10,7 @@
 //! This level sits above [`crate::query`] and calls only its public facade.
 
 pub mod advance;
+pub mod contact;
 pub mod motion;
 pub mod speed;
 
