@@ -9,10 +9,14 @@
 //!
 //! Near a contact the steps shrink; when one falls below the time tolerance, or the lower
 //! bound does not clear `D` even at the query's narrowest interval, the advancement has
-//! *stalled*. Then probes at `t_lower + h` (h doubling from the time tolerance) look for a
-//! time whose *upper* bound is `<= D` (for `D = 0`: a certified overlap); the first one
-//! found becomes `t_upper` and a bisection towards `t_lower` moves it down while it keeps
-//! finding certified contacts. The first contact time lies in `[t_lower, t_upper]`. When no
+//! *stalled*. Then the last query's witnesses are carried along the motions and tested for
+//! a contact certificate ([`super::contact`]: points certified inside the true solids, a few
+//! microseconds a test) at evenly spaced, then doubling times after `t_lower`; the first
+//! time certified becomes `t_upper`, bisected towards `t_lower`. Only when no carried point
+//! certifies one do probes at `t_lower + h` (h doubling from the time tolerance) look for a
+//! time whose *upper* bound is `<= D` at tolerance 0 (for `D = 0`: a certified overlap); the
+//! first one found becomes `t_upper` and a bisection towards `t_lower` moves it down while it
+//! keeps finding certified contacts. The first contact time lies in `[t_lower, t_upper]`. When no
 //! probe certifies a contact (grazing at the query's accuracy, or a budget ran out) the
 //! answer is [`ToiOutcome::Undecided`]: apart before `t_lower`, nothing certified after.
 

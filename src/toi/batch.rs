@@ -48,7 +48,8 @@ mod tests {
     use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
     use std::sync::Arc;
 
-    /// The batch gives exactly the answers of the searches run one by one, in order.
+    /// The batch gives exactly the answers of the searches run one by one, in order (every
+    /// field but the traversal's timers).
     #[test]
     fn batch_equals_sequential() {
         let a = Solid::from_profile(Arc::new(model("pawn").unwrap()), 1e-3).unwrap();
@@ -73,7 +74,23 @@ mod tests {
         assert_eq!(batch.len(), motions.len());
         for ((ma, mb), got) in motions.iter().zip(&batch) {
             let want = time_of_impact(&a, ma, &b, mb, &opts).unwrap();
-            assert_eq!(got.as_ref().unwrap(), &want);
+            let got = got.as_ref().unwrap();
+            let key = |r: &TimeOfImpact| {
+                let c = r
+                    .contact
+                    .as_ref()
+                    .map(|c| (c.lower, c.upper, c.point_a, c.point_b));
+                (
+                    r.outcome,
+                    r.t_lower,
+                    r.t_upper,
+                    c,
+                    r.queries,
+                    r.steps,
+                    r.certificates,
+                )
+            };
+            assert_eq!(key(got), key(&want));
         }
         assert_eq!(
             times_of_impact(&a, &b, &motions, &opts, Some(0)).unwrap_err(),

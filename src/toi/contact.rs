@@ -18,7 +18,12 @@
 //! slack, [`query_slack`]). With `s` their sum, `margin_X(y) > e_X + s` puts `x` inside true X
 //! at the exact pose. Then:
 //!
-//! * `D = 0`: one point `x` inside both true solids: they overlap, distance 0.
+//! * `D = 0`: one point `x` inside both true solids: they overlap, distance 0. Or a point `y`
+//!   within `e_B` of B's true boundary (a point of B's approximating surface, as the query's
+//!   witnesses are, carried rigidly with B) inside A with `margin_A(y) > e_A + e_B + 2 s`:
+//!   the ball of radius `e_B` about it holds a point of B's true boundary and lies inside
+//!   true A, so the solids overlap (the first certificate of
+//!   [`crate::query::traverse::overlap`]; the same with A and B swapped).
 //! * `D > 0`: `x_a` inside true A, `x_b` inside true B: `d(A, B) <= |x_a - x_b|`, so
 //!   `|x_a - x_b| + s <= D` certifies `d <= D` (`s` covers the rounding of the difference,
 //!   far below the pose slack).
@@ -43,7 +48,8 @@ use nalgebra::{Isometry3, Point3, Vector3};
 /// above the threshold gives the same comparison; see [`point_in_solid_capped`]).
 const CAP_OVER_THRESHOLD: f64 = 2.0;
 
-/// Fractions of the segment `P_a -> P_b` tried as a point inside both solids.
+/// Fractions of the segment `P_a -> P_b` tried as a point inside both solids, besides the
+/// one that balances the two thresholds ([`ContactTest::certify`]).
 const SEGMENT_FRACTIONS: [f64; 3] = [0.5, 0.25, 0.75];
 
 /// How far (in thresholds) the `D > 0` candidates are pushed into their solids.
@@ -109,7 +115,12 @@ impl ContactTest<'_> {
     /// Whether the world point `x` is inside true X (posed at `pose`) by the module doc's
     /// argument.
     fn inside(solid: &Solid, pose: &Isometry3<f64>, x: &Point3<f64>, slack: f64) -> bool {
-        let threshold = solid.tree.eps + slack;
+        Self::deep(solid, pose, x, solid.tree.eps + slack)
+    }
+
+    /// Whether the world point `x` is inside X's approximating region (X posed at `pose`)
+    /// with margin above `threshold`.
+    fn deep(solid: &Solid, pose: &Isometry3<f64>, x: &Point3<f64>, threshold: f64) -> bool {
         let y = pose.inverse_transform_point(x);
         let c = point_in_solid_capped(&solid.tree, &y, CAP_OVER_THRESHOLD * threshold);
         c.inside && c.margin > threshold
@@ -121,7 +132,27 @@ impl ContactTest<'_> {
         let pb = self.mb.pose_at(t);
         let slack = self.slack(&pa, &pb);
         let (xa, xb) = (pa * w.local_a, pb * w.local_b);
-        for f in SEGMENT_FRACTIONS {
+        let (ea, eb) = (self.a.tree.eps, self.b.tree.eps);
+        // Surface points of one solid deep inside the other (once the witnesses crossed).
+        let both = ea + eb + 2.0 * slack;
+        for (x, inside_a) in [(xb, true), (xa, false)] {
+            let deep = if inside_a {
+                Self::deep(self.a, &pa, &x, both)
+            } else {
+                Self::deep(self.b, &pb, &x, both)
+            };
+            if deep {
+                return Some(CertifiedContact {
+                    point_a: x,
+                    point_b: x,
+                    upper: 0.0,
+                });
+            }
+        }
+        // The point of the segment whose distances to the two witnesses exceed each solid's
+        // threshold by the same share, then fixed fractions.
+        let balanced = (ea + slack) / (ea + eb + 2.0 * slack);
+        for f in std::iter::once(balanced).chain(SEGMENT_FRACTIONS) {
             let x = xa + (xb - xa) * f;
             if Self::inside(self.a, &pa, &x, slack) && Self::inside(self.b, &pb, &x, slack) {
                 return Some(CertifiedContact {
