@@ -34,6 +34,13 @@ use crate::solid::Solid;
 /// `t + step` is then moved down by two ulps ([`below`]) to cover its own rounding.
 pub const STEP_SHRINK_REL: f64 = 1e-12;
 
+/// The advancement tries the carried contact certificate ([`super::contact`]) once, as soon
+/// as its lower bound is within `(e_A + e_B) / 4` of the contact distance (the trees' eps),
+/// after one query at tolerance 0 and its step: from there the steps would shrink
+/// geometrically towards the time tolerance, more of them the coarser the trees. When no
+/// contact is certified the advancement goes on as before.
+pub const EARLY_STALL_DIVISOR: f64 = 4.0;
+
 /// Default time tolerance: the advancement stalls below steps of this length, and the
 /// bisection stops when `t_upper - t_lower` is below it.
 pub const DEFAULT_TIME_TOLERANCE: f64 = 1e-6;
@@ -272,6 +279,17 @@ pub fn time_of_impact(
         )
     };
     // Advancement: apart on [0, t).
+    let eps_sum = a.tree.eps + b.tree.eps;
+    let contact_test = |s: &Search| ContactTest {
+        a,
+        b,
+        ma,
+        mb,
+        ra: s.ra,
+        rb: s.rb,
+        contact_distance: dist,
+    };
+    let mut early_tried = false;
     let mut t = 0.0_f64;
     let mut witness: Witness;
     loop {
@@ -305,7 +323,46 @@ pub fn time_of_impact(
                 return Ok(answer(&s, ToiOutcome::Apart, 1.0, None, None, s.queries));
             }
             if h >= opts.time_tolerance {
-                t = below(t + h).max(t);
+                let mut next = below(t + h).max(t);
+                if !early_tried && h * speed < eps_sum / EARLY_STALL_DIVISOR && s.budget_left() {
+                    // Within a fraction of the trees' eps of D: the remaining steps would
+                    // shrink geometrically. One query at tolerance 0 (its lower bound is
+                    // close to the distance), its step, then the carried certificate.
+                    early_tried = true;
+                    let pt = s.probe(t, true)?;
+                    if pt.upper <= dist {
+                        return Ok(contact_at(&s, t, pt));
+                    }
+                    witness = Witness::new(&pt.distance, &ma.pose_at(t), &mb.pose_at(t));
+                    if pt.lower > dist {
+                        let ht = step(&pt);
+                        if t + ht > 1.0 {
+                            return Ok(answer(&s, ToiOutcome::Apart, 1.0, None, None, s.queries));
+                        }
+                        next = next.max(below(t + ht));
+                    }
+                    let test = contact_test(&s);
+                    let even = eps_sum / speed;
+                    if let Some((hi, c)) = carried_contact(
+                        &test,
+                        &witness,
+                        next,
+                        even,
+                        opts.time_tolerance,
+                        &mut s.certificates,
+                    ) {
+                        let steps = s.queries;
+                        return Ok(answer(
+                            &s,
+                            ToiOutcome::Contact,
+                            next,
+                            Some(hi),
+                            Some(contact_distance_of(&c)),
+                            steps,
+                        ));
+                    }
+                }
+                t = next;
                 continue;
             }
         }
@@ -313,15 +370,7 @@ pub fn time_of_impact(
     }
     let steps = s.queries;
     // Stalled at t: a contact certified from the carried witnesses first.
-    let test = ContactTest {
-        a,
-        b,
-        ma,
-        mb,
-        ra: s.ra,
-        rb: s.rb,
-        contact_distance: dist,
-    };
+    let test = contact_test(&s);
     {
         let speed = speed_bound(ma, s.ra, mb, s.rb, t);
         let even = if speed > 0.0 {
