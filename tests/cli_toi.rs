@@ -89,3 +89,75 @@ fn bad_inputs_name_the_problem() {
     let (ok, _, err) = revdist(&["toi", "sphere", "nonesuch", "--pose-b", "{}"]);
     assert!(!ok && err.contains("nonesuch"), "{err}");
 }
+
+/// `toi --batch`: one line out per line in, in order, each with its line number; the
+/// answers equal single `toi --json` runs (less the timing); bad lines get their own error
+/// line and exit status 1.
+#[test]
+fn batch_answers_every_line_like_single_runs() {
+    let dir = std::env::temp_dir().join(format!("revdist_toi_batch_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("motions.jsonl");
+    let good = [
+        (
+            r#"{"translation": [3, 0, 0]}"#,
+            r#"{"translation": [0, 0, 0]}"#,
+            "0.1",
+        ),
+        (
+            r#"{"translation": [3, 0, 2]}"#,
+            r#"{"translation": [-3, 0, 2]}"#,
+            "0",
+        ),
+        (
+            r#"{"translation": [0, 3, 0.2]}"#,
+            r#"{"translation": [0.1, 0, 0]}"#,
+            "0",
+        ),
+    ];
+    let mut text = String::new();
+    for (p0, p1, d) in good {
+        text += &format!(
+            "{{\"a\": \"sphere\", \"b\": \"pawn\", \"pose_b\": {p0}, \"pose_b_end\": {p1}, \"eps\": 0.001, \"contact_distance\": {d}}}\n"
+        );
+    }
+    text += "{\"a\": \"sphere\", \"b\": \"pawn\"}\n\n";
+    std::fs::write(&path, text).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_revdist"))
+        .args(["toi", "--batch", path.to_str().unwrap(), "--threads", "2"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 5);
+    for (i, (p0, p1, d)) in good.iter().enumerate() {
+        assert_eq!(lines[i]["line"], i + 1);
+        assert!(lines[i].get("time_us").is_none());
+        let (ok, single, err) = revdist(&[
+            "toi",
+            "sphere",
+            "pawn",
+            "--pose-b",
+            p0,
+            "--pose-b-end",
+            p1,
+            "--eps",
+            "0.001",
+            "--contact-distance",
+            d,
+            "--json",
+        ]);
+        assert!(ok, "{err}");
+        let mut single: serde_json::Value = serde_json::from_str(&single).unwrap();
+        let mut batch = lines[i].clone();
+        single.as_object_mut().unwrap().remove("time_us");
+        batch.as_object_mut().unwrap().remove("line");
+        assert_eq!(batch, single);
+    }
+    assert!(lines[3]["error"].as_str().unwrap().contains("pose_b"));
+    assert!(lines[4]["error"].as_str().unwrap().contains("blank line"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -25,6 +25,7 @@ import numpy as np
 
 from . import _revdist
 from ._revdist import DEFAULT_EPS, WIDTH_LIMITS, Solid, models
+from ._toi import TimeOfImpactResult, time_of_impact
 
 __all__ = [
     "DEFAULT_EPS",
@@ -32,8 +33,10 @@ __all__ = [
     "DistanceResult",
     "Pair",
     "Solid",
+    "TimeOfImpactResult",
     "distance",
     "models",
+    "time_of_impact",
 ]
 
 _WIDTH_NAMES = np.array(WIDTH_LIMITS)

@@ -119,3 +119,32 @@ class Pair:
 
 def models() -> list[str]:
     """Names of the built-in models."""
+
+class TimeOfImpactResult:
+    """Certified first-contact intervals for N motions (numpy arrays, one entry per motion)."""
+
+    outcome: npt.NDArray[np.str_]
+    t_lower: npt.NDArray[np.float64]
+    t_upper: npt.NDArray[np.float64]
+    upper_at_upper: npt.NDArray[np.float64]
+    point_a: npt.NDArray[np.float64]
+    point_b: npt.NDArray[np.float64]
+    queries: npt.NDArray[np.int64]
+    certificates: npt.NDArray[np.int64]
+    speed_bound: npt.NDArray[np.float64]
+    def __len__(self) -> int: ...
+
+def time_of_impact(
+    a: Solid,
+    b: Solid,
+    pose_b_start: PoseArray,
+    pose_b_end: PoseArray,
+    pose_a_start: Optional[PoseArray] = None,
+    pose_a_end: Optional[PoseArray] = None,
+    eps: Optional[float] = None,
+    contact_distance: float = 0.0,
+    threads: Optional[int] = None,
+) -> TimeOfImpactResult:
+    """Certified first contact of a and b along N motions over t in [0, 1] (apart on
+    [0, t_lower), distance <= contact_distance at t_upper); the GIL is released and the
+    motions are spread over the cores."""

@@ -54,3 +54,18 @@ class Pair:
 
 def models() -> list[str]: ...
 def _solid_from_recipe(recipe: tuple[Any, ...]) -> Solid: ...
+
+TOI_OUTCOMES: list[str]
+
+def time_of_impact(
+    a: Solid,
+    b: Solid,
+    pose_b_start: npt.NDArray[np.float64],
+    pose_b_end: npt.NDArray[np.float64],
+    pose_a_start: Optional[npt.NDArray[np.float64]] = None,
+    pose_a_end: Optional[npt.NDArray[np.float64]] = None,
+    *,
+    eps: Optional[float] = None,
+    contact_distance: float = 0.0,
+    threads: Optional[int] = None,
+) -> dict[str, Any]: ...

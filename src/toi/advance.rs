@@ -9,13 +9,18 @@
 //!
 //! Near a contact the steps shrink; when one falls below the time tolerance, or the lower
 //! bound does not clear `D` even at the query's narrowest interval, the advancement has
-//! *stalled*. Then probes at `t_lower + h` (h doubling from the time tolerance) look for a
-//! time whose *upper* bound is `<= D` (for `D = 0`: a certified overlap); the first one
-//! found becomes `t_upper` and a bisection towards `t_lower` moves it down while it keeps
-//! finding certified contacts. The first contact time lies in `[t_lower, t_upper]`. When no
+//! *stalled*. Then the last query's witnesses are carried along the motions and tested for
+//! a contact certificate ([`super::contact`]: points certified inside the true solids, a few
+//! microseconds a test) at evenly spaced, then doubling times after `t_lower`; the first
+//! time certified becomes `t_upper`, bisected towards `t_lower`. Only when no carried point
+//! certifies one do probes at `t_lower + h` (h doubling from the time tolerance) look for a
+//! time whose *upper* bound is `<= D` at tolerance 0 (for `D = 0`: a certified overlap); the
+//! first one found becomes `t_upper` and a bisection towards `t_lower` moves it down while it
+//! keeps finding certified contacts. The first contact time lies in `[t_lower, t_upper]`. When no
 //! probe certifies a contact (grazing at the query's accuracy, or a budget ran out) the
 //! answer is [`ToiOutcome::Undecided`]: apart before `t_lower`, nothing certified after.
 
+use super::contact::{CertifiedContact, ContactTest, Witness};
 use super::motion::{Motion, MotionError, MOTION_ROUNDING_REL};
 use super::speed::speed_bound;
 use crate::query::{
@@ -28,6 +33,13 @@ use crate::solid::Solid;
 /// unit roundoff `1.1e-16` relative; `1e-12` covers them with a wide margin. The sum
 /// `t + step` is then moved down by two ulps ([`below`]) to cover its own rounding.
 pub const STEP_SHRINK_REL: f64 = 1e-12;
+
+/// The advancement tries the carried contact certificate ([`super::contact`]) once, as soon
+/// as its lower bound is within `(e_A + e_B) / 4` of the contact distance (the trees' eps),
+/// after one query at tolerance 0 and its step: from there the steps would shrink
+/// geometrically towards the time tolerance, more of them the coarser the trees. When no
+/// contact is certified the advancement goes on as before.
+pub const EARLY_STALL_DIVISOR: f64 = 4.0;
 
 /// Default time tolerance: the advancement stalls below steps of this length, and the
 /// bisection stops when `t_upper - t_lower` is below it.
@@ -118,6 +130,8 @@ pub struct TimeOfImpact {
     pub queries: usize,
     /// Queries of the advancement alone.
     pub steps: usize,
+    /// Contact certificates tried from carried witnesses ([`super::contact`]; not queries).
+    pub certificates: usize,
     /// The speed bound `L` at `t = 0` ([`super::speed`]).
     pub speed_bound: f64,
     /// Traversal counters summed over every query.
@@ -164,6 +178,7 @@ struct Search<'a> {
     opts: ToiOptions,
     cache: QueryCache,
     queries: usize,
+    certificates: usize,
     stats: TraversalStats,
 }
 
@@ -235,6 +250,7 @@ pub fn time_of_impact(
         opts: *opts,
         cache: QueryCache::default(),
         queries: 0,
+        certificates: 0,
         stats: TraversalStats::default(),
     };
     let dist = opts.contact_distance;
@@ -247,6 +263,7 @@ pub fn time_of_impact(
             contact,
             queries: s.queries,
             steps,
+            certificates: s.certificates,
             speed_bound: speed0,
             stats: s.stats,
         };
@@ -262,7 +279,19 @@ pub fn time_of_impact(
         )
     };
     // Advancement: apart on [0, t).
+    let eps_sum = a.tree.eps + b.tree.eps;
+    let contact_test = |s: &Search| ContactTest {
+        a,
+        b,
+        ma,
+        mb,
+        ra: s.ra,
+        rb: s.rb,
+        contact_distance: dist,
+    };
+    let mut early_tried = false;
     let mut t = 0.0_f64;
+    let mut witness: Witness;
     loop {
         if !s.budget_left() {
             return Ok(answer(&s, ToiOutcome::Undecided, t, None, None, s.queries));
@@ -271,6 +300,7 @@ pub fn time_of_impact(
         if p.upper <= dist {
             return Ok(contact_at(&s, t, p));
         }
+        witness = Witness::new(&p.distance, &ma.pose_at(t), &mb.pose_at(t));
         let speed = speed_bound(ma, s.ra, mb, s.rb, t);
         let step = |p: &Probe| {
             if speed > 0.0 {
@@ -284,6 +314,7 @@ pub fn time_of_impact(
             if p.upper <= dist {
                 return Ok(contact_at(&s, t, p));
             }
+            witness = Witness::new(&p.distance, &ma.pose_at(t), &mb.pose_at(t));
         }
         if p.lower > dist {
             let h = step(&p);
@@ -292,22 +323,91 @@ pub fn time_of_impact(
                 return Ok(answer(&s, ToiOutcome::Apart, 1.0, None, None, s.queries));
             }
             if h >= opts.time_tolerance {
-                t = below(t + h).max(t);
+                let mut next = below(t + h).max(t);
+                if !early_tried && h * speed < eps_sum / EARLY_STALL_DIVISOR && s.budget_left() {
+                    // Within a fraction of the trees' eps of D: the remaining steps would
+                    // shrink geometrically. One query at tolerance 0 (its lower bound is
+                    // close to the distance), its step, then the carried certificate.
+                    early_tried = true;
+                    let pt = s.probe(t, true)?;
+                    if pt.upper <= dist {
+                        return Ok(contact_at(&s, t, pt));
+                    }
+                    witness = Witness::new(&pt.distance, &ma.pose_at(t), &mb.pose_at(t));
+                    if pt.lower > dist {
+                        let ht = step(&pt);
+                        if t + ht > 1.0 {
+                            return Ok(answer(&s, ToiOutcome::Apart, 1.0, None, None, s.queries));
+                        }
+                        next = next.max(below(t + ht));
+                    }
+                    let test = contact_test(&s);
+                    let even = eps_sum / speed;
+                    if let Some((hi, c)) = carried_contact(
+                        &test,
+                        &witness,
+                        next,
+                        even,
+                        opts.time_tolerance,
+                        &mut s.certificates,
+                    ) {
+                        let steps = s.queries;
+                        return Ok(answer(
+                            &s,
+                            ToiOutcome::Contact,
+                            next,
+                            Some(hi),
+                            Some(contact_distance_of(&c)),
+                            steps,
+                        ));
+                    }
+                }
+                t = next;
                 continue;
             }
         }
         break;
     }
     let steps = s.queries;
-    // Stalled at t: look for a certified contact after it.
+    // Stalled at t: a contact certified from the carried witnesses first.
+    let test = contact_test(&s);
+    {
+        let speed = speed_bound(ma, s.ra, mb, s.rb, t);
+        let even = if speed > 0.0 {
+            (a.tree.eps + b.tree.eps) / speed
+        } else {
+            1.0
+        };
+        if let Some((hi, c)) = carried_contact(
+            &test,
+            &witness,
+            t,
+            even,
+            opts.time_tolerance,
+            &mut s.certificates,
+        ) {
+            return Ok(answer(
+                &s,
+                ToiOutcome::Contact,
+                t,
+                Some(hi),
+                Some(contact_distance_of(&c)),
+                steps,
+            ));
+        }
+    }
+    // Then distance queries at tolerance 0 (their overlap certificates search both solids).
+    let contact_probe = |s: &mut Search, at: f64| -> Result<Option<Distance>, ToiError> {
+        let p = s.probe(at, true)?;
+        Ok((p.upper <= dist).then_some(p.distance))
+    };
     let mut h = opts.time_tolerance;
     let mut before = t;
     let mut found: Option<(f64, Distance)> = None;
     while s.budget_left() {
         let probe_t = (t + h).min(1.0);
-        let p = s.probe(probe_t, true)?;
-        if p.upper <= dist {
-            found = Some((probe_t, p.distance));
+        if let Some(d) = contact_probe(&mut s, probe_t)? {
+            found = Some((probe_t, d));
             break;
         }
         if probe_t >= 1.0 {
@@ -323,12 +423,9 @@ pub fn time_of_impact(
     let mut lo = before;
     while hi - t > opts.time_tolerance && hi - lo > opts.time_tolerance && s.budget_left() {
         let mid = 0.5 * (lo + hi);
-        let p = s.probe(mid, true)?;
-        if p.upper <= dist {
-            hi = mid;
-            hit = p.distance;
-        } else {
-            lo = mid;
+        match contact_probe(&mut s, mid)? {
+            Some(d) => (hi, hit) = (mid, d),
+            None => lo = mid,
         }
     }
     Ok(answer(
@@ -339,4 +436,63 @@ pub fn time_of_impact(
         Some(hit),
         steps,
     ))
+}
+
+/// Evenly spaced tries of the carried certificate before the steps start doubling: at a
+/// stall the distance is within a few eps of contact, and a thin overlap window (a wall
+/// crossed at an angle) can be shorter than a doubled step.
+const EVEN_TRIES: usize = 64;
+
+/// The first time after `t` at which the carried witnesses certify a contact
+/// ([`super::contact`]): [`EVEN_TRIES`] steps of `even` (the time the distance needs to change
+/// by the trees' eps at the speed bound), then doubling steps, then bisection down to `h`;
+/// `None` when no time up to 1 certifies one.
+fn carried_contact(
+    test: &ContactTest,
+    w: &Witness,
+    t: f64,
+    even: f64,
+    h: f64,
+    count: &mut usize,
+) -> Option<(f64, CertifiedContact)> {
+    let mut certify = |at: f64| {
+        *count += 1;
+        test.certify(at, w)
+    };
+    let (mut step, mut lo, mut tries) = (even.max(h), t, 0);
+    let (mut hi, mut hit) = loop {
+        let at = (lo + step).min(1.0);
+        if let Some(c) = certify(at) {
+            break (at, c);
+        }
+        if at >= 1.0 {
+            return None;
+        }
+        lo = at;
+        tries += 1;
+        if tries >= EVEN_TRIES {
+            step *= 2.0;
+        }
+    };
+    while hi - lo > h && hi - t > h {
+        let mid = 0.5 * (lo + hi);
+        match certify(mid) {
+            Some(c) => (hi, hit) = (mid, c),
+            None => lo = mid,
+        }
+    }
+    Some((hi, hit))
+}
+
+/// A carried certificate as the answer's contact query.
+fn contact_distance_of(c: &CertifiedContact) -> Distance {
+    Distance {
+        value: c.upper,
+        lower: 0.0,
+        upper: c.upper,
+        point_a: c.point_a,
+        point_b: c.point_b,
+        overlap: c.upper == 0.0,
+        stats: TraversalStats::default(),
+    }
 }

@@ -162,3 +162,70 @@ fn bad_options_are_errors() {
         Err(ToiError::Query { .. })
     ));
 }
+
+/// The carried certificate against the closed form: for random witness pairs carried along
+/// random motions of two balls, every certified time has the balls within `D` (the centres within
+/// `2R + D`), and the points it names are in (or on) the balls. Many tested times are apart,
+/// so a certificate granted there would fail.
+#[test]
+fn carried_certificates_hold_in_closed_form() {
+    use super::contact::{ContactTest, Witness};
+    use crate::query::{try_distance, QueryOptions};
+    use crate::test_rng::SplitMix64;
+    let ball = Solid::from_profile(Arc::new(model("sphere").unwrap()), 1e-2).unwrap();
+    let centre = nalgebra::Point3::new(0.0, 0.0, 0.75);
+    let mut rng = SplitMix64(0x70_1c_e7);
+    let (mut granted, mut tried) = (0, 0);
+    for _ in 0..300 {
+        let d = [0.0, 0.0, 0.05][rng.int(0, 2)];
+        let pose = |rng: &mut SplitMix64, r: f64| {
+            Isometry3::from_parts(
+                Translation3::from(rng.unit() * r),
+                UnitQuaternion::from_scaled_axis(rng.unit() * rng.range(0.0, 3.0)),
+            )
+        };
+        let ma = Motion::new(pose(&mut rng, 0.2), pose(&mut rng, 0.2)).unwrap();
+        let mb = Motion::new(pose(&mut rng, 2.2), pose(&mut rng, 0.6)).unwrap();
+        // Witnesses of a query at a random time (the search's starting point).
+        let t0 = rng.range(0.0, 0.5);
+        let (pa, pb) = (ma.pose_at(t0), mb.pose_at(t0));
+        let q = try_distance(
+            &ball.with_pose(pa),
+            &ball.with_pose(pb),
+            &QueryOptions::default(),
+        )
+        .unwrap();
+        let w = Witness::new(&q, &pa, &pb);
+        let test = ContactTest {
+            a: &ball,
+            b: &ball,
+            ma: &ma,
+            mb: &mb,
+            ra: 1.5,
+            rb: 1.5,
+            contact_distance: d,
+        };
+        for k in 0..40 {
+            let t = t0 + (1.0 - t0) * f64::from(k) / 39.0;
+            tried += 1;
+            let Some(c) = test.certify(t, &w) else {
+                continue;
+            };
+            granted += 1;
+            let (ca, cb) = (ma.pose_at(t) * centre, mb.pose_at(t) * centre);
+            let gap = (cb - ca).norm() - 2.0 * R;
+            assert!(
+                gap <= d + 1e-9,
+                "certified at t {t} with the balls {gap} apart (D {d})"
+            );
+            // Points inside (or, for a surface point deep in the other ball, within the
+            // tree's eps of) each ball.
+            let near =
+                |p: &nalgebra::Point3<f64>, c: &nalgebra::Point3<f64>| (p - c).norm() < R + 0.02;
+            assert!(near(&c.point_a, &ca) && near(&c.point_b, &cb));
+            assert!(c.upper <= d);
+        }
+    }
+    // The test must exercise both answers.
+    assert!(granted > 100 && granted < tried, "{granted} of {tried}");
+}

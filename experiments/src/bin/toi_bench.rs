@@ -28,8 +28,14 @@
 //! evenly spaced times), both with FCL's default `toc_err = 1e-4`; revdist runs with its
 //! default time tolerance 1e-6 and the trees' default query tolerance.
 //!
-//! Usage: `toi_bench [--motions N] [--eps E,...] [--seed S] [--out DIR]`. Writes
-//! `DIR/toi_bench.csv`, `DIR/toi_bench.md` and `DIR/toi_bench.svg`.
+//! The summary per eps gives revdist's median, p90, p99 and largest time, FCL conservative
+//! advancement's median and misses, and the contact intervals' width in units of
+//! `2 eps / closing speed` (the closing speed measured by two queries at tolerance `eps / 10`
+//! shortly before `t_lower`, outside the timed search).
+//!
+//! Usage: `toi_bench [--motions N] [--eps E,...] [--seed S] [--out DIR] [--revdist-only]`.
+//! Writes `DIR/toi_bench.csv`, `DIR/toi_bench.md` and `DIR/toi_bench.svg`; with
+//! `--revdist-only` FCL (and the meshes) are skipped and only the summary is written.
 
 use clap::Parser;
 use experiments::baseline_mesh::obbrss_of;
@@ -37,8 +43,9 @@ use experiments::cli::{Eps, Out, Seed};
 use experiments::driver::{self, DriverResult};
 use experiments::plot::{grouped_bars, BarSeries};
 use experiments::shapes::{centre, paper_pairs, profile};
-use experiments::stats::median;
+use experiments::stats::{median, quantile};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use revdist::query::{try_distance, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use revdist::tessellate::CertifiedMesh;
 use revdist::toi::{time_of_impact, Motion, ToiOptions, ToiOutcome};
@@ -90,6 +97,9 @@ struct Args {
     seed: Seed,
     #[command(flatten)]
     out: Out,
+    /// Skip FCL and the meshes (revdist's searches and the summary only)
+    #[arg(long)]
+    revdist_only: bool,
 }
 
 struct Rng(u64);
@@ -158,6 +168,9 @@ struct Run {
     revdist_us: f64,
     revdist_wall_us: f64,
     queries: usize,
+    certificates: usize,
+    /// `(t_upper - t_lower) * closing speed / (2 eps)` for a contact (NaN otherwise).
+    width_ratio: f64,
     outcome: ToiOutcome,
     t_lower: f64,
     t_upper: Option<f64>,
@@ -203,15 +216,47 @@ impl Row {
     }
 }
 
+/// `(t_upper - t_lower) * c / (2 eps)` with `c` the closing speed just before `t_lower`:
+/// the drop of the distance (queries at tolerance `eps / 10`) over a time `dt` in which it
+/// changes by about `10 eps` at the speed bound.
+fn width_ratio(
+    sa: &Solid,
+    sb: &Solid,
+    mb: &Motion,
+    r: &revdist::toi::TimeOfImpact,
+    eps: f64,
+) -> f64 {
+    let Some(tu) = r.t_upper else {
+        return f64::NAN;
+    };
+    let opts = QueryOptions {
+        tolerance: Tolerance::Absolute(eps / 10.0),
+        ..QueryOptions::default()
+    };
+    let value = |t: f64| {
+        try_distance(sa, &sb.with_pose(mb.pose_at(t)), &opts).map_or(f64::NAN, |d| d.value)
+    };
+    let dt = (10.0 * eps / r.speed_bound).min(r.t_lower);
+    if dt <= 0.0 {
+        return f64::NAN;
+    }
+    let closing = (value(r.t_lower - dt) - value(r.t_lower)) / dt;
+    (tu - r.t_lower) * closing.max(0.0) / (2.0 * eps)
+}
+
 fn measure(
     na: &str,
     nb: &str,
     eps: f64,
     n: usize,
     seed: u64,
+    revdist_only: bool,
 ) -> Result<Row, Box<dyn std::error::Error>> {
     let (pa, pb) = (profile(na)?, profile(nb)?);
     let (ca, cb) = (centre(&pa), centre(&pb));
+    if revdist_only {
+        return measure_revdist(na, nb, pa, pb, eps, n, seed);
+    }
     let mesh = |p: &revdist::profile::Profile| -> Result<(CertifiedMesh, FclMesh), Box<dyn std::error::Error>> {
         let (cm, _) = experiments::baseline_mesh::certified_mesh(p, eps, None)?;
         let m = obbrss_of(&cm)?;
@@ -257,6 +302,8 @@ fn measure(
             revdist_us,
             revdist_wall_us,
             queries: r.queries,
+            certificates: r.certificates,
+            width_ratio: width_ratio(&sa, &sb, &mb, &r, eps),
             outcome: r.outcome,
             t_lower: r.t_lower,
             t_upper: r.t_upper,
@@ -276,6 +323,108 @@ fn measure(
     })
 }
 
+/// revdist's searches alone (`--revdist-only`).
+fn measure_revdist(
+    na: &str,
+    nb: &str,
+    pa: revdist::profile::Profile,
+    pb: revdist::profile::Profile,
+    eps: f64,
+    n: usize,
+    seed: u64,
+) -> Result<Row, Box<dyn std::error::Error>> {
+    let (ca, cb) = (centre(&pa), centre(&pb));
+    let sa = Solid::from_profile(Arc::new(pa), eps)?;
+    let sb = Solid::from_profile(Arc::new(pb), eps)?;
+    let mut rng = Rng(seed ^ (na.len() as u64 * 131 + nb.len() as u64 * 7919) ^ eps.to_bits());
+    let fixed = Motion::fixed(Isometry3::identity())?;
+    let mut runs = Vec::new();
+    for [b0, b1] in motions(n, ca, cb, &mut rng) {
+        let mb = Motion::new(b0, b1)?;
+        let (r, revdist_wall_us, revdist_us) =
+            timed(|| time_of_impact(&sa, &fixed, &sb, &mb, &ToiOptions::default()));
+        let r = r?;
+        let wr = width_ratio(&sa, &sb, &mb, &r, eps);
+        if std::env::var("TOI_DEBUG").is_ok() {
+            eprintln!(
+                "DBG {na}-{nb} {eps} {revdist_us:.0} q {} s {} c {} {:?} [{}, {:?}] w {wr:.2} L {}",
+                r.queries, r.steps, r.certificates, r.outcome, r.t_lower, r.t_upper, r.speed_bound
+            );
+        }
+        runs.push(Run {
+            revdist_us,
+            revdist_wall_us,
+            queries: r.queries,
+            certificates: r.certificates,
+            width_ratio: wr,
+            outcome: r.outcome,
+            t_lower: r.t_lower,
+            t_upper: r.t_upper,
+            t_mesh: f64::NAN,
+            fcl: [(f64::NAN, false, f64::NAN, false, f64::NAN); 2],
+        });
+    }
+    Ok(Row {
+        pair: format!("{na}-{nb}"),
+        eps,
+        triangles: 0,
+        runs,
+    })
+}
+
+/// The summary per eps (see the module doc).
+fn summary(rows: &[Row], eps_list: &[f64], with_fcl: bool) -> Result<String, std::fmt::Error> {
+    let mut md = String::from("| eps | searches | contacts | revdist median ms | p90 | p99 | max | queries (median) | certificates (median) | width / (2 eps / closing), median | max |");
+    if with_fcl {
+        md += " FCL CA median ms | FCL CA misses | FCL CA / revdist (medians) |";
+    }
+    md += "\n|---|---|---|---|---|---|---|---|---|---|---|";
+    if with_fcl {
+        md += "---|---|---|";
+    }
+    md += "\n";
+    for &eps in eps_list {
+        let runs: Vec<&Run> = rows
+            .iter()
+            .filter(|r| r.eps == eps)
+            .flat_map(|r| &r.runs)
+            .collect();
+        let col = |f: &dyn Fn(&Run) -> f64| runs.iter().map(|r| f(r)).collect::<Vec<f64>>();
+        let ms = col(&|r| r.revdist_us / 1e3);
+        let widths: Vec<f64> = col(&|r| r.width_ratio)
+            .into_iter()
+            .filter(|w| w.is_finite())
+            .collect();
+        let contacts = runs
+            .iter()
+            .filter(|r| r.outcome == ToiOutcome::Contact)
+            .count();
+        write!(
+            md,
+            "| {eps:.0e} | {} | {contacts} | {:.3} | {:.3} | {:.3} | {:.3} | {:.0} | {:.0} | {:.2} | {:.2} |",
+            runs.len(),
+            median(&ms),
+            quantile(&ms, 0.9),
+            quantile(&ms, 0.99),
+            quantile(&ms, 1.0),
+            median(&col(&|r| r.queries as f64)),
+            median(&col(&|r| r.certificates as f64)),
+            median(&widths),
+            quantile(&widths, 1.0),
+        )?;
+        if with_fcl {
+            let fcl = median(&col(&|r| r.fcl[0].0 / 1e3));
+            let misses = runs
+                .iter()
+                .filter(|r| r.fcl[0].3 && r.outcome == ToiOutcome::Contact && !r.fcl[0].1)
+                .count();
+            write!(md, " {fcl:.2} | {misses} | {:.1} |", fcl / median(&ms))?;
+        }
+        md += "\n";
+    }
+    Ok(md)
+}
+
 fn run(args: Args) -> DriverResult {
     let eps_list = args.eps.or(&DEFAULT_EPS);
     let seed = args.seed.or(SEED);
@@ -283,10 +432,15 @@ fn run(args: Args) -> DriverResult {
     let mut rows = Vec::new();
     for &eps in &eps_list {
         for (na, nb) in &pairs {
-            rows.push(measure(na, nb, eps, args.motions, seed)?);
+            rows.push(measure(na, nb, eps, args.motions, seed, args.revdist_only)?);
         }
     }
-    let mut csv = String::from("pair,eps,motion,triangles,revdist_cpu_us,revdist_wall_us,queries,outcome,t_lower,t_upper,t_mesh,fcl_ca_cpu_us,fcl_ca_collide,fcl_ca_toc,fcl_ca_supported,fcl_ca_wall_us,fcl_naive_cpu_us,fcl_naive_collide,fcl_naive_toc,fcl_naive_supported,fcl_naive_wall_us\n");
+    let sum = summary(&rows, &eps_list, !args.revdist_only)?;
+    if args.revdist_only {
+        print!("{sum}");
+        return Ok(());
+    }
+    let mut csv = String::from("pair,eps,motion,triangles,revdist_cpu_us,revdist_wall_us,queries,certificates,width_ratio,outcome,t_lower,t_upper,t_mesh,fcl_ca_cpu_us,fcl_ca_collide,fcl_ca_toc,fcl_ca_supported,fcl_ca_wall_us,fcl_naive_cpu_us,fcl_naive_collide,fcl_naive_toc,fcl_naive_supported,fcl_naive_wall_us\n");
     for row in &rows {
         for (i, r) in row.runs.iter().enumerate() {
             let f = |k: usize| {
@@ -295,13 +449,15 @@ fn run(args: Args) -> DriverResult {
             };
             writeln!(
                 csv,
-                "{},{},{i},{},{:.1},{:.1},{},{},{},{},{},{},{}",
+                "{},{},{i},{},{:.1},{:.1},{},{},{:.3},{},{},{},{},{},{}",
                 row.pair,
                 row.eps,
                 row.triangles,
                 r.revdist_us,
                 r.revdist_wall_us,
                 r.queries,
+                r.certificates,
+                r.width_ratio,
                 r.outcome.name(),
                 r.t_lower,
                 r.t_upper.map_or(String::new(), |t| t.to_string()),
@@ -351,6 +507,7 @@ fn run(args: Args) -> DriverResult {
         "\nOver {tot} motions: FCL conservative advancement missed {} certified contacts and reported {} impossible ones; the naive solver missed {} and reported {} impossible ones. Times: median thread CPU time per search.",
         tot_miss[0], tot_bad[0], tot_miss[1], tot_bad[1]
     )?;
+    writeln!(md, "\n## Per eps\n\n{sum}")?;
     let dir = &args.out.dir;
     std::fs::write(dir.join("toi_bench.csv"), csv)?;
     std::fs::write(dir.join("toi_bench.md"), &md)?;

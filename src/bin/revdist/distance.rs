@@ -77,7 +77,7 @@ pub struct Args {
 /// Pose as written in JSON.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct PoseJson {
+pub(crate) struct PoseJson {
     #[serde(default)]
     translation: Option<[f64; 3]>,
     #[serde(default)]
@@ -191,7 +191,7 @@ impl From<&Distance> for Output {
     }
 }
 
-fn pose_from_json(p: &PoseJson) -> Result<Isometry3<f64>, String> {
+pub(crate) fn pose_from_json(p: &PoseJson) -> Result<Isometry3<f64>, String> {
     pose_from_quaternion(
         p.translation.unwrap_or([0.0; 3]),
         p.rotation.unwrap_or([1.0, 0.0, 0.0, 0.0]),
@@ -252,9 +252,10 @@ pub fn run(args: Args) -> CmdResult {
             opts,
             timings: args.timings,
             signed: args.signed,
-            threads,
         };
-        return batch::run(path, &settings);
+        return batch::run(path, threads, &|number, line, cache| {
+            answer_line(number, line, &settings, cache)
+        });
     }
     let (Some(a), Some(b)) = (&args.a, &args.b) else {
         return Err("give two solids A B, or --batch FILE".into());

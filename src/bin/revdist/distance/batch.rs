@@ -23,7 +23,7 @@ use std::sync::{Condvar, Mutex};
 
 use revdist::query::QueryOptions;
 
-use super::{answer_line, SolidCache};
+use super::SolidCache;
 use crate::CmdResult;
 
 /// How many lines the reader may run ahead of the writer.
@@ -44,8 +44,6 @@ pub struct Settings {
     /// Add the signed distance and penetration depth (`--signed`) to lines that give no
     /// `"signed"` of their own.
     pub signed: bool,
-    /// Worker threads.
-    pub threads: usize,
 }
 
 /// Some lines of a batch failed (exit status 1); the others were answered.
@@ -59,8 +57,13 @@ pub struct LinesFailed {
 /// One input line: its 1-based number and its text, or why it has none.
 type Job = (usize, Result<String, String>);
 
-/// Runs the batch in `path` ("-" for stdin), writing to stdout.
-pub fn run(path: &str, settings: &Settings) -> CmdResult {
+/// What a batch runs per line: the output line for input line `N` (its text, or why it has
+/// none), or that line's error message. `revdist distance` and `revdist toi` each give theirs.
+pub type Answer<'a> =
+    dyn Fn(usize, Result<&str, String>, &SolidCache) -> Result<String, String> + Sync + 'a;
+
+/// Runs the batch in `path` ("-" for stdin) on `threads` workers, writing to stdout.
+pub fn run(path: &str, threads: usize, answer: &Answer) -> CmdResult {
     let input: Box<dyn Read + Send> = if path == "-" {
         Box::new(std::io::stdin())
     } else {
@@ -71,7 +74,7 @@ pub fn run(path: &str, settings: &Settings) -> CmdResult {
     };
     // Standard output is line-buffered; the writer flushes once per burst of answers.
     let mut out = std::io::BufWriter::new(std::io::stdout());
-    let (total, failed) = run_with(input, &mut out, settings)?;
+    let (total, failed) = run_with(input, &mut out, threads, answer)?;
     if failed > 0 {
         return Err(Box::new(LinesFailed { failed, total }));
     }
@@ -128,7 +131,8 @@ impl Output<'_> {
 pub fn run_with(
     input: Box<dyn Read + Send>,
     out: &mut (dyn Write + Send),
-    settings: &Settings,
+    threads: usize,
+    answer: &Answer,
 ) -> Result<(usize, usize), Box<dyn std::error::Error>> {
     let lines = Mutex::new(Lines {
         reader: BufReader::new(input),
@@ -145,8 +149,8 @@ pub fn run_with(
     let caught_up = Condvar::new();
     let cache = SolidCache::default();
     std::thread::scope(|scope| {
-        for _ in 0..settings.threads.max(1) {
-            scope.spawn(|| work(&lines, &output, &caught_up, settings, &cache));
+        for _ in 0..threads.max(1) {
+            scope.spawn(|| work(&lines, &output, &caught_up, answer, &cache));
         }
     });
     let lines = lines.into_inner().unwrap_or_else(|e| e.into_inner());
@@ -166,7 +170,7 @@ fn work(
     lines: &Mutex<Lines>,
     output: &Mutex<Output>,
     caught_up: &Condvar,
-    settings: &Settings,
+    answer: &Answer,
     cache: &SolidCache,
 ) {
     loop {
@@ -180,15 +184,10 @@ fn work(
                 o = caught_up.wait(o).unwrap_or_else(|e| e.into_inner());
             }
         }
-        let answer = answer_line(
-            number,
-            line.as_deref().map_err(Clone::clone),
-            settings,
-            cache,
-        );
+        let text = answer(number, line.as_deref().map_err(Clone::clone), cache);
         let mut o = output.lock().unwrap_or_else(|e| e.into_inner());
         let before = o.next;
-        o.file(number, answer);
+        o.file(number, text);
         if o.next > before {
             caught_up.notify_all();
         }
