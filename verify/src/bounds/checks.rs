@@ -31,11 +31,7 @@ struct PairReference {
     pair: Pair,
 }
 
-fn reference(
-    cfg: &PieceConfig,
-    (i, j): (usize, usize),
-    extra_seeds: &[Pair],
-) -> PairReference {
+fn reference(cfg: &PieceConfig, (i, j): (usize, usize), extra_seeds: &[Pair]) -> PairReference {
     let (a, b) = (&cfg.a[i..=i], &cfg.b[j..=j]);
     let local = |p: &Pair| {
         let mut p = *p;
@@ -55,7 +51,10 @@ fn reference(
     for p in &found {
         let d = pair_distance(a, b, &cfg.pos_ab, &p.p, &p.q);
         if d < best.distance {
-            best = PairReference { distance: d, pair: *p };
+            best = PairReference {
+                distance: d,
+                pair: *p,
+            };
         }
     }
     best.pair.p.piece = i;
@@ -71,7 +70,10 @@ pub struct Sink<'t> {
 
 impl Sink<'_> {
     fn tally(&mut self, b: Bound) -> Option<&mut Tally> {
-        self.tallies.iter_mut().find(|(x, _)| *x == b).map(|(_, t)| t)
+        self.tallies
+            .iter_mut()
+            .find(|(x, _)| *x == b)
+            .map(|(_, t)| t)
     }
 
     fn record(
@@ -125,8 +127,16 @@ fn level(rng: &mut SplitMix64, reference: f64, scale: f64) -> f64 {
     }
 }
 
-/// All checks of one configuration.
+/// All checks of one configuration. The pieces are first put through [`Patch::new`] (its
+/// snap of arc centres within `1e-10 r` of the axis), as the query tree does: the kernels'
+/// contract is about snapped patches, and the reference is taken on the same surfaces.
 pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
+    let snap = |c: &[ProfileArc]| c.iter().map(|p| Patch::new(*p).arc).collect::<Vec<_>>();
+    let cfg = &PieceConfig {
+        a: snap(&cfg.a),
+        b: snap(&cfg.b),
+        ..cfg.clone()
+    };
     let pos: &Isometry3<f64> = &cfg.pos_ab;
     let (ta, tb) = (tree(&cfg.a), tree(&cfg.b));
     let slack = query_slack(&ta, &tb, pos);
@@ -196,12 +206,23 @@ pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
                 }
                 let lvl = level(rng, d, scale);
                 let h = hull_bound_until(&a, &b, pos, &dir, lvl);
-                sink.record(Bound::Hull, h, d, 0.0, scale, &what(&format!("hull_until {lvl:?}")));
+                sink.record(
+                    Bound::Hull,
+                    h,
+                    d,
+                    0.0,
+                    scale,
+                    &what(&format!("hull_until {lvl:?}")),
+                );
             }
             if sink.wants(Bound::PatchLower) {
                 mark(sink, Bound::PatchLower);
                 let prune = level(rng, d, scale);
-                let precision = if rng.chance(0.5) { 0.0 } else { rng.log_range(1e-9, 1e-3) * scale };
+                let precision = if rng.chance(0.5) {
+                    0.0
+                } else {
+                    rng.log_range(1e-9, 1e-3) * scale
+                };
                 let l = patch_lower(&pa, &pb, pos, prune, precision, &mut CoreMemo::default());
                 sink.record(
                     Bound::PatchLower,
@@ -209,7 +230,9 @@ pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
                     d,
                     0.0,
                     scale,
-                    &what(&format!("patch_lower prune {prune:?} precision {precision:?}")),
+                    &what(&format!(
+                        "patch_lower prune {prune:?} precision {precision:?}"
+                    )),
                 );
             }
             if sink.wants(Bound::Subdivision) {
@@ -223,7 +246,9 @@ pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
                     d,
                     0.0,
                     scale,
-                    &what(&format!("patch_lower_bound precision {precision:?} dir {n:?}")),
+                    &what(&format!(
+                        "patch_lower_bound precision {precision:?} dir {n:?}"
+                    )),
                 );
             }
         }
@@ -244,13 +269,32 @@ pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
     let (la, lb) = (&ta.nodes[ta.root as usize], &tb.nodes[tb.root as usize]);
     if sink.wants(Bound::NodeSphere) {
         mark(sink, Bound::NodeSphere);
-        let v = node_pair_bound(&la.bound, &lb.bound, pos, BoundKind::Sphere, f64::INFINITY, None);
-        sink.record(Bound::NodeSphere, v, chain_ref, 0.0, scale, &whole("node sphere"));
+        let v = node_pair_bound(
+            &la.bound,
+            &lb.bound,
+            pos,
+            BoundKind::Sphere,
+            f64::INFINITY,
+            None,
+        );
+        sink.record(
+            Bound::NodeSphere,
+            v,
+            chain_ref,
+            0.0,
+            scale,
+            &whole("node sphere"),
+        );
     }
     if sink.wants(Bound::NodeTorus) {
         mark(sink, Bound::NodeTorus);
         let hulls = (cfg.a.len() <= 2 && cfg.b.len() <= 2)
-            .then(|| Some((NodeHull::of_pieces(&cfg.a, 0.0)?, NodeHull::of_pieces(&cfg.b, 0.0)?)))
+            .then(|| {
+                Some((
+                    NodeHull::of_pieces(&cfg.a, 0.0)?,
+                    NodeHull::of_pieces(&cfg.b, 0.0)?,
+                ))
+            })
             .flatten();
         let prune = level(rng, chain_ref, scale);
         let v = node_pair_bound(
@@ -261,7 +305,14 @@ pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
             prune,
             hulls.as_ref().map(|(x, y)| (x, y)),
         );
-        sink.record(Bound::NodeTorus, v, chain_ref, 0.0, scale, &whole("node torus"));
+        sink.record(
+            Bound::NodeTorus,
+            v,
+            chain_ref,
+            0.0,
+            scale,
+            &whole("node torus"),
+        );
     }
     if sink.wants(Bound::LeafStages) {
         mark(sink, Bound::LeafStages);
@@ -269,16 +320,51 @@ pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
         let mut lp = LeafPair::new(&ta, &tb, pos);
         let (ra, rb) = (ta.root, tb.root);
         if let Some(r) = lp.bounds(ra, rb, prune, f64::INFINITY) {
-            sink.record(Bound::LeafStages, r.lower, chain_ref, slack, scale, &whole("LeafPair::bounds"));
+            sink.record(
+                Bound::LeafStages,
+                r.lower,
+                chain_ref,
+                slack,
+                scale,
+                &whole("LeafPair::bounds"),
+            );
         }
         let t = lp.tightened_lower(ra, rb, prune);
-        sink.record(Bound::LeafStages, t, chain_ref, slack, scale, &whole("LeafPair::tightened_lower"));
+        sink.record(
+            Bound::LeafStages,
+            t,
+            chain_ref,
+            slack,
+            scale,
+            &whole("LeafPair::tightened_lower"),
+        );
         let e = lp.exact(ra, rb, prune);
-        sink.record(Bound::LeafStages, e.lower, chain_ref, slack, scale, &whole("LeafPair::exact"));
+        sink.record(
+            Bound::LeafStages,
+            e.lower,
+            chain_ref,
+            slack,
+            scale,
+            &whole("LeafPair::exact"),
+        );
     }
     for (k, s) in seen.iter().enumerate() {
         if *s {
             sink.tallies[k].1.configs += 1;
         }
     }
+}
+
+/// The MPFR reference of one pair of pieces alone (reproducers and tests): the smallest
+/// realised distance the search finds between them, evaluated at 256 bits.
+pub fn piece_pair_reference(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f64 {
+    let cfg = PieceConfig {
+        family: super::pieces::Family::Generic,
+        scale: 1.0,
+        a: vec![*a],
+        b: vec![*b],
+        pos_ab: *pos_ab,
+        contact: None,
+    };
+    reference(&cfg, (0, 0), &[]).distance
 }

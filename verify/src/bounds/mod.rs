@@ -133,7 +133,10 @@ pub fn run(opts: &Options) -> Report {
                 })
             })
             .collect();
-        handles.into_iter().map(|h| h.join().expect("worker")).collect()
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("worker"))
+            .collect()
     });
     let mut report = Report {
         seed: opts.seed,

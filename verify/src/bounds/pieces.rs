@@ -171,7 +171,11 @@ fn scaled(p: &ProfileArc, k: f64) -> ProfileArc {
 
 /// A random chain of `n` pieces from a random start; `kink` is the G0 turn at each joint
 /// (0 for smooth joints; its sign against the pieces' turning makes it convex or reflex).
-fn chain(rng: &mut SplitMix64, n: usize, kink: &mut dyn FnMut(&mut SplitMix64) -> f64) -> Vec<ProfileArc> {
+fn chain(
+    rng: &mut SplitMix64,
+    n: usize,
+    kink: &mut dyn FnMut(&mut SplitMix64) -> f64,
+) -> Vec<ProfileArc> {
     let mut start = Point2::new(rng.range(0.3, 1.5), rng.range(-1.0, 1.0));
     let mut alpha = rng.range(0.0, TAU);
     let mut out = Vec::with_capacity(n);
@@ -182,7 +186,8 @@ fn chain(rng: &mut SplitMix64, n: usize, kink: &mut dyn FnMut(&mut SplitMix64) -
             ProfileArc::Segment { start, end }
         } else {
             let r = rng.log_range(0.05, 2.0);
-            let sweep = rng.range(0.05, 2.0_f64.min(1.2 / r)) * if rng.chance(0.5) { 1.0 } else { -1.0 };
+            let sweep =
+                rng.range(0.05, 2.0_f64.min(1.2 / r)) * if rng.chance(0.5) { 1.0 } else { -1.0 };
             arc_from(start, alpha, r, sweep)
         };
         alpha = end_angle(&piece) + kink(rng);
@@ -195,7 +200,13 @@ fn chain(rng: &mut SplitMix64, n: usize, kink: &mut dyn FnMut(&mut SplitMix64) -
 fn generic_chain(rng: &mut SplitMix64) -> Vec<ProfileArc> {
     let n = rng.int(1, 3);
     let smooth = rng.chance(0.5);
-    let mut c = chain(rng, n, &mut |r| if smooth { 0.0 } else { r.range(-1.0, 1.0) });
+    let mut c = chain(rng, n, &mut |r| {
+        if smooth {
+            0.0
+        } else {
+            r.range(-1.0, 1.0)
+        }
+    });
     keep_off_axis(&mut c, 0.01);
     c
 }
@@ -231,7 +242,11 @@ fn parallel_arc(rng: &mut SplitMix64) -> ProfileArc {
         (phi - sweep, sweep)
     };
     let on_axis = rng.chance(0.3);
-    let c = if on_axis { 0.0 } else { r + rng.range(0.0, 1.0) };
+    let c = if on_axis {
+        0.0
+    } else {
+        r + rng.range(0.0, 1.0)
+    };
     let mut a = ProfileArc::Arc {
         center: Point2::new(c, rng.range(-1.0, 1.0)),
         radius: r,
@@ -240,7 +255,11 @@ fn parallel_arc(rng: &mut SplitMix64) -> ProfileArc {
     };
     if on_axis && min_rho(&a) < 0.0 {
         // A sphere patch: keep the side of rho >= 0 (a quarter from a pole to the equator).
-        let (lo, hi) = if rng.chance(0.5) { (-FRAC_PI_2, 0.0) } else { (0.0, FRAC_PI_2) };
+        let (lo, hi) = if rng.chance(0.5) {
+            (-FRAC_PI_2, 0.0)
+        } else {
+            (0.0, FRAC_PI_2)
+        };
         a = ProfileArc::Arc {
             center: Point2::new(0.0, rng.range(-1.0, 1.0)),
             radius: r,
@@ -261,7 +280,11 @@ fn axis_piece(rng: &mut SplitMix64) -> ProfileArc {
             end: Point2::new(rng.range(0.1, 1.0), z + rng.range(-1.0, 1.0)),
         },
         1 => {
-            let pole = if rng.chance(0.5) { FRAC_PI_2 } else { -FRAC_PI_2 };
+            let pole = if rng.chance(0.5) {
+                FRAC_PI_2
+            } else {
+                -FRAC_PI_2
+            };
             let sweep = rng.range(0.1, FRAC_PI_2) * -pole.signum();
             ProfileArc::Arc {
                 center: Point2::new(0.0, z),
@@ -290,7 +313,11 @@ fn axis_piece(rng: &mut SplitMix64) -> ProfileArc {
 
 fn flat_cone(rng: &mut SplitMix64) -> ProfileArc {
     let slope = rng.log_range(1e-9, 1e-5) * if rng.chance(0.5) { 1.0 } else { -1.0 };
-    let (r0, z0, l) = (rng.range(0.0, 1.0), rng.range(-1.0, 1.0), rng.range(0.2, 1.0));
+    let (r0, z0, l) = (
+        rng.range(0.0, 1.0),
+        rng.range(-1.0, 1.0),
+        rng.range(0.2, 1.0),
+    );
     let r0 = if rng.chance(0.2) { 0.0 } else { r0 };
     if rng.chance(0.7) {
         ProfileArc::Segment {
@@ -351,7 +378,11 @@ fn normal(rng: &mut SplitMix64, chain: &[ProfileArc], x: &SurfacePoint) -> Vecto
 fn rotation_between(from: &Vector3<f64>, to: &Vector3<f64>) -> UnitQuaternion<f64> {
     UnitQuaternion::rotation_between(from, to).unwrap_or_else(|| {
         let axis = from.cross(&Vector3::x());
-        let axis = if axis.norm() > 0.1 { axis } else { from.cross(&Vector3::y()) };
+        let axis = if axis.norm() > 0.1 {
+            axis
+        } else {
+            from.cross(&Vector3::y())
+        };
         UnitQuaternion::from_axis_angle(&Unit::new_normalize(axis), PI)
     })
 }
@@ -364,7 +395,10 @@ fn contact_pose(rng: &mut SplitMix64, cfg: &mut PieceConfig, g: f64) {
     let nb = normal(rng, &cfg.b, &q);
     let twist = UnitQuaternion::from_axis_angle(&Unit::new_normalize(na), rng.range(0.0, TAU));
     let rot = twist * rotation_between(&nb, &(-na));
-    let (pa, qb) = (super::chain::point(&cfg.a, &p), super::chain::point(&cfg.b, &q));
+    let (pa, qb) = (
+        super::chain::point(&cfg.a, &p),
+        super::chain::point(&cfg.b, &q),
+    );
     let t = pa.coords + na * g - rot * qb.coords;
     cfg.pos_ab = Isometry3::from_parts(Translation3::from(t), rot);
     cfg.contact = Some(Pair::new(&cfg.a, &cfg.b, &cfg.pos_ab, p, q));
@@ -380,9 +414,17 @@ fn free_pose(rng: &mut SplitMix64, scale: f64) -> Isometry3<f64> {
 
 /// Coaxial tangent circles: B is one arc tangent to A's profile at a chosen point, in a
 /// frame shifted along A's axis and possibly flipped.
-fn coaxial_tangent(rng: &mut SplitMix64, a: &[ProfileArc], scale: f64) -> (Vec<ProfileArc>, Isometry3<f64>) {
+fn coaxial_tangent(
+    rng: &mut SplitMix64,
+    a: &[ProfileArc],
+    scale: f64,
+) -> (Vec<ProfileArc>, Isometry3<f64>) {
     let piece = rng.below(a.len());
-    let s = if rng.chance(0.3) { rng.below(2) as f64 } else { rng.next_f64() };
+    let s = if rng.chance(0.3) {
+        rng.below(2) as f64
+    } else {
+        rng.next_f64()
+    };
     let m = a[piece].point_at(s);
     let n = planar_normal(&a[piece], s) * if rng.chance(0.5) { 1.0 } else { -1.0 };
     let g = gap(rng) * scale;
@@ -427,7 +469,7 @@ fn coaxial_tangent(rng: &mut SplitMix64, a: &[ProfileArc], scale: f64) -> (Vec<P
         UnitQuaternion::from_axis_angle(&Vector3::x_axis(), PI)
     } else {
         UnitQuaternion::identity()
-    } ;
+    };
     let spin = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), rng.range(0.0, TAU));
     let pos = Isometry3::from_parts(Translation3::new(0.0, 0.0, tz), spin * rot);
     (vec![arc], pos)

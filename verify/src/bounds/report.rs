@@ -148,7 +148,12 @@ impl Report {
 impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let mut s = String::new();
-        writeln!(s, "verify bounds, seed {}, {:.1} s", self.seed, self.seconds).ok();
+        writeln!(
+            s,
+            "verify bounds, seed {}, {:.1} s",
+            self.seed, self.seconds
+        )
+        .ok();
         writeln!(
             s,
             "| bound | configs | evaluations | finite | positive | within allowance | violations | worst (bound - realised) / scale |"
