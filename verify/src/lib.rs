@@ -1,6 +1,7 @@
 //! Independent checks of revdist: exact arithmetic with rug (GMP/MPFR) and float references.
 
 pub mod baselines;
+pub mod bounds;
 pub mod circles;
 pub mod companion;
 pub mod crosscheck;

@@ -117,6 +117,22 @@ enum Command {
         #[command(flatten)]
         shard: verify::shard::Flags,
     },
+    /// The lower-bound chain link by link: every node, piece, stage-1, subdivision, kernel
+    /// and leaf-stage lower bound against MPFR distances of realised surface pairs on
+    /// adversarial configurations (docs/verification.md); exit status 1 on any violation.
+    Bounds {
+        #[arg(long, default_value_t = 1000)]
+        count: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Only this bound (repeat or separate by commas): sphere, torus, shell, slab, hull,
+        /// node-sphere, node-torus, patch-lower, subdivision, kernel, leaf-stages.
+        #[arg(long, value_delimiter = ',')]
+        bound: Vec<String>,
+        /// Worker threads.
+        #[arg(long, default_value_t = 1)]
+        threads: usize,
+    },
     /// Certified time of impact (`revdist toi`) against the oracle sampled densely along
     /// random motions (head-on, grazing, rotating, never touching, both moving) over the
     /// built-in models and M_t frames; exit status 1 when any motion fails.
@@ -212,6 +228,33 @@ fn main() {
             }
             print!("{}", s.report(show));
             if s.violation_count() > 0 {
+                std::process::exit(1);
+            }
+        }
+        Command::Bounds {
+            count,
+            seed,
+            bound,
+            threads,
+        } => {
+            let mut bounds = Vec::new();
+            for name in &bound {
+                match verify::bounds::Bound::from_name(name) {
+                    Some(b) => bounds.push(b),
+                    None => {
+                        eprintln!("unknown bound {name:?}");
+                        std::process::exit(2);
+                    }
+                }
+            }
+            let r = verify::bounds::run(&verify::bounds::Options {
+                count,
+                seed,
+                bounds,
+                threads,
+            });
+            println!("{r}");
+            if r.violations() > 0 {
                 std::process::exit(1);
             }
         }

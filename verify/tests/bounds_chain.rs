@@ -1,0 +1,127 @@
+//! The lower-bound chain link by link (`verify bounds`, docs/verification.md "The
+//! lower-bound chain, link by link"): every bound against MPFR distances of realised surface
+//! pairs on 1,000 adversarial configurations, with no allowance beyond the bound's own slack.
+
+use nalgebra::{Isometry3, Point2, Quaternion, Translation3, UnitQuaternion};
+use revdist::query::{patch_distance, query_slack, Patch, ProfileArc};
+use verify::bounds::{checks::piece_pair_reference, run, Bound, Options};
+
+/// Configurations per bound in CI (the long mode runs 100,000: docs/verification.md).
+const CI_COUNT: usize = 1000;
+
+fn campaign(bounds: Vec<Bound>) -> verify::bounds::report::Report {
+    run(&Options {
+        count: CI_COUNT,
+        seed: 11,
+        bounds,
+        threads: 2,
+    })
+}
+
+/// Every bound of `query::bound`, stage 1 and the subdivision holds; the search is
+/// powerful enough for the test to mean something (its realised pairs meet the exact
+/// kernel's value and every constructed contact).
+#[test]
+fn volume_stage1_and_subdivision_bounds_hold() {
+    use Bound::*;
+    let bounds = vec![
+        Sphere,
+        Torus,
+        Shell,
+        Slab,
+        Hull,
+        NodeSphere,
+        NodeTorus,
+        PatchLower,
+        Subdivision,
+    ];
+    let r = campaign(bounds.clone());
+    println!("{r}");
+    for b in bounds {
+        let t = r.tally(b).expect("tally");
+        assert!(
+            t.configs >= CI_COUNT,
+            "{}: {} configurations",
+            b.name(),
+            t.configs
+        );
+        assert_eq!(t.violations, 0, "{}: {:?}", b.name(), t.examples);
+        assert!(t.finite > 0 && t.positive > 0, "{}: vacuous", b.name());
+    }
+    let p = &r.power;
+    assert!(p.contacts > 300 && p.contacts_met == p.contacts, "{p:?}");
+}
+
+/// The search's realised pairs come within 1e-9 of the scale of the exact kernel's value
+/// on at least 99% of the piece pairs it solves: the reference is near the minimum, not
+/// only above it.
+#[test]
+fn search_reaches_the_kernel_minimum() {
+    let r = run(&Options {
+        count: 300,
+        seed: 12,
+        bounds: vec![Bound::Kernel],
+        threads: 2,
+    });
+    let p = &r.power;
+    assert!(p.compared > 500, "{p:?}");
+    assert!(p.within[1] * 100 >= p.compared * 99, "{p:?}");
+}
+
+/// OPEN CASE (reported to the lead): the exact kernel and the leaf stages built on it
+/// report lower bounds above realised distances, by far more than the query's slack, on a
+/// few configurations per thousand (touching sphere patches, parallels at equators, nearly
+/// flat cones). Ignored so that CI stays green; `verify bounds --bound kernel,leaf-stages`
+/// lists the cases. Do not weaken: the check has no allowance beyond `query_slack`.
+#[test]
+#[ignore = "open case: patch_distance above realised distances (docs/verification.md)"]
+fn kernel_and_leaf_stages_hold() {
+    let r = campaign(vec![Bound::Kernel, Bound::LeafStages]);
+    println!("{r}");
+    assert_eq!(r.violations(), 0);
+}
+
+/// OPEN CASE, minimal reproducer: two sphere patches centred on their axes (A: the lower
+/// quarter from the south pole, B: a band), B placed so that they touch (realised distance
+/// 1.5e-15 in MPFR); `patch_distance` reports 1.32e-6, 2900 times the query's slack.
+#[test]
+#[ignore = "open case: patch_distance of touching sphere patches (docs/verification.md)"]
+fn touching_sphere_patches() {
+    let a = ProfileArc::Arc {
+        center: Point2::new(0.0, -4.92221957180668),
+        radius: 3.327559308505056,
+        phi_start: -1.5707963267948966,
+        sweep: 1.5543077346920895,
+    };
+    let b = ProfileArc::Arc {
+        center: Point2::new(0.0, -1.6242781143431135),
+        radius: 1.9291844443992778,
+        phi_start: 0.28612008151645685,
+        sweep: 1.2846762452784397,
+    };
+    let rot = UnitQuaternion::new_unchecked(Quaternion::new(
+        -0.09591317964390411,
+        0.22995461722805155,
+        -0.9291750287052989,
+        -0.2730481679422222,
+    ));
+    let pos = Isometry3::from_parts(
+        Translation3::new(-0.8251477878501354, 0.7659782511538065, -7.327621349457651),
+        rot,
+    );
+    let realised = piece_pair_reference(&a, &b, &pos);
+    assert!(realised < 1e-12, "the construction touches: {realised}");
+    let d = patch_distance(&Patch::new(a), &Patch::new(b), &pos);
+    let tree = |p: ProfileArc| {
+        revdist::query::QueryTree::from_leaves(
+            vec![revdist::bvh::tree::Leaf::new(vec![p], 0.0)],
+            revdist::profile::ProfileKind::Closed,
+        )
+    };
+    let slack = query_slack(&tree(a), &tree(b), &pos);
+    assert!(
+        d.sampled || d.distance <= realised + slack,
+        "kernel {} > realised {realised} + slack {slack}",
+        d.distance
+    );
+}
