@@ -7,6 +7,7 @@ pub mod companion;
 pub mod crosscheck;
 pub mod exact_circle;
 pub mod oracle;
+pub mod penetration;
 pub mod provenance;
 pub mod queries;
 pub mod random_profiles;

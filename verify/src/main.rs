@@ -72,6 +72,26 @@ enum Command {
         #[arg(long, value_parser = parse_shard, allow_hyphen_values = true)]
         shard: Option<(usize, usize)>,
     },
+    /// Certified penetration depth and signed distance against independent references on
+    /// the exact profiles: exact depths of balls, the oracle's separating translations and
+    /// common points (verify/src/penetration/mod.rs). Exit status 1 on any violation.
+    Penetration {
+        #[arg(long, default_value_t = 1000)]
+        count: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Tree eps values to draw from, comma separated.
+        #[arg(long, value_delimiter = ',', default_values_t = vec![1e-3, 1e-4])]
+        eps: Vec<f64>,
+        /// Worker threads (default: all cores).
+        #[arg(long, default_value_t = 0)]
+        threads: usize,
+        /// Run the oracle's separation and common-point checks on every N-th case.
+        #[arg(long, default_value_t = 1)]
+        oracle_every: usize,
+        #[arg(long, default_value = "target/verify-penetration")]
+        out: std::path::PathBuf,
+    },
     /// Adds up the shards of one `verify queries` campaign (their --out directories, each
     /// with a summary.json); exit status 1 when any case failed.
     MergeQueries {
@@ -277,6 +297,35 @@ fn main() {
                     print!("{}", r.summary());
                     std::process::exit(i32::from(!r.failures.is_empty()));
                 }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    std::process::exit(2);
+                }
+            }
+        }
+        Command::Penetration {
+            count,
+            seed,
+            eps,
+            threads,
+            oracle_every,
+            out,
+        } => {
+            if eps.is_empty() || eps.iter().any(|e| !(e.is_finite() && *e > 0.0)) {
+                eprintln!("error: --eps needs positive numbers, got {eps:?}");
+                std::process::exit(2);
+            }
+            let opts = verify::penetration::Options {
+                count,
+                seed,
+                eps,
+                threads,
+                out,
+                oracle_every,
+            };
+            match verify::penetration::run(&opts) {
+                Ok(s) if s.violations == 0 => {}
+                Ok(_) => std::process::exit(1),
                 Err(e) => {
                     eprintln!("error: {e}");
                     std::process::exit(2);
