@@ -136,6 +136,7 @@ mod tests {
     /// to the rounding of the typed digits (the normalised axis is exact here, so only the
     /// angle moves: `2 atan(x / w)` with `x = w`, a quarter turn to rounding).
     #[test]
+    #[allow(clippy::approx_constant)] // the digits a person types, on purpose
     fn quaternions_typed_with_few_decimals_are_normalised() {
         for c in [0.7071, 0.707] {
             let p = pose_from_quaternion([0.0; 3], [c, 0.0, c, 0.0]).unwrap();

@@ -52,7 +52,7 @@
 //! **What is certified and what is not.** `lower <= PD <= upper` always (an unanswered side
 //! stays `0` or `inf`). Narrow intervals are reached for shallow contacts and for balls
 //! against any solid; deep interlocked solids may leave a wide interval, whose ends remain
-//! honest. See `docs/penetration.md` for the measured widths and times.
+//! honest. `verify penetration` checks both ends against the oracle and exact ball depths.
 
 pub mod deepest;
 pub mod separate;

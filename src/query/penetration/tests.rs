@@ -11,7 +11,7 @@ use crate::profile::Profile;
 use crate::query::{distance, QueryOptions};
 use crate::solid::Solid;
 use crate::test_rng::SplitMix64;
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use std::sync::Arc;
 
 fn ball(r: f64, eps: f64) -> Solid {

@@ -263,7 +263,7 @@ fn run_case(index: usize, built: &Built, opts: &Options) -> Option<Outcome> {
         size: size_a.max(size_b),
         violations: Vec::new(),
     };
-    if !(sd.lower <= sd.upper) {
+    if sd.lower.is_nan() || sd.upper.is_nan() || sd.lower > sd.upper {
         out.violations.push(format!(
             "signed interval [{}, {}] empty",
             sd.lower, sd.upper
@@ -273,7 +273,7 @@ fn run_case(index: usize, built: &Built, opts: &Options) -> Option<Outcome> {
         return Some(out);
     };
     (out.lower, out.upper) = (p.lower, p.upper);
-    if !(p.lower <= p.upper) {
+    if p.lower.is_nan() || p.upper.is_nan() || p.lower > p.upper {
         out.violations
             .push(format!("depth interval [{}, {}] empty", p.lower, p.upper));
     }
@@ -293,7 +293,7 @@ fn run_case(index: usize, built: &Built, opts: &Options) -> Option<Outcome> {
             ));
         }
     }
-    if index % opts.oracle_every.max(1) == 0 {
+    if index.is_multiple_of(opts.oracle_every.max(1)) {
         let ia_idx = &a_shape.index;
         // Upper: B moved just past `upper` along `direction` is not overlapping.
         if p.direction.norm() > 0.0 {

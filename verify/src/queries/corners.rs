@@ -228,7 +228,10 @@ pub fn corner_contact(rng: &mut SplitMix64, a: &Shape, b: &Shape) -> Option<(Pos
     let to_contact = UnitQuaternion::rotation_between(&nb, &-na).unwrap_or_else(|| {
         UnitQuaternion::from_axis_angle(&any_perpendicular(&nb), std::f64::consts::PI)
     });
-    let spin = UnitQuaternion::from_axis_angle(&Unit::new_normalize(na), rng.range(0.0, 6.283));
+    let spin = UnitQuaternion::from_axis_angle(
+        &Unit::new_normalize(na),
+        rng.range(0.0, std::f64::consts::TAU),
+    );
     let rot = spin * to_contact;
     let t = pa + na * gap - rot * pb;
     let q = rot.into_inner();
