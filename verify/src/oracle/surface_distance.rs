@@ -638,7 +638,8 @@ impl<'a> Dir<'a> {
                 break;
             };
             let upper = st.best.map_or(f64::INFINITY, |p| p.d);
-            if lb.max(0.0) >= (upper - tau).min(opts.goal) || upper <= opts.goal {
+            let reached_goal = opts.goal.is_finite() && upper <= opts.goal;
+            if lb.max(0.0) >= (upper - tau).min(opts.goal) || reached_goal {
                 lower = lb.min(leaf_min);
                 break;
             }
