@@ -27,7 +27,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# coal for the peers benchmark (issue 28): experiments/build.rs compiles cpp/coal/coal_peer.cc
+# coal for the peers benchmark (docs/verification.md, "Peers"): experiments/build.rs compiles cpp/coal/coal_peer.cc
 # against it. About 350 MB with its cmeel dependencies (Boost, assimp, octomap, qhull, zlib).
 coal_version=3.0.3
 root=$(cd "$(dirname "$0")/.." && pwd)

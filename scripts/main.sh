@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job: regenerates every figure and table under figures/ (issue 13), revdist and the
+# The main job: regenerates every figure and table under figures/, revdist and the
 # real baselines (FCL, libccd, CGAL) and peers (coal, parry3d) measured in the same run.
 #
 #   bash scripts/main.sh           # default scale: each step sized to what its figure needs;

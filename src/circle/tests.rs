@@ -484,7 +484,7 @@ fn circle_u(c: [f64; 3], n: [f64; 3], u: [f64; 3], r: f64) -> Circle3 {
     Circle3::with_u_axis(Point3::from(c), Vector3::from(n), Vector3::from(u), r).unwrap()
 }
 
-/// Issue 3 accuracy requirement: distance error relative to the configuration scale
+/// Accuracy requirement (`docs/numerics.md`): distance error relative to the configuration scale
 /// max(ra, rb, |Cb - Ca|).
 const REL_TOL: f64 = 1e-12;
 

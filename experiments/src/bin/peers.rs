@@ -1,4 +1,4 @@
-//! revdist beside its peers in one run (issue 28): FCL 0.7 (`BVHModel<OBBRSS>` and `<RSS>`),
+//! revdist beside its peers in one run (`docs/verification.md`, "Peers"): FCL 0.7 (`BVHModel<OBBRSS>` and `<RSS>`),
 //! coal 3 (`BVHModel<OBBRSS>` and its exact primitives with GJK, in a process of its own:
 //! `experiments::peers::coal`) and parry3d 0.31 (`TriMesh` and its exact primitives:
 //! `experiments::peers::parry`).

@@ -786,7 +786,7 @@ fn witnesses_on_the_surfaces_and_value_within_the_width() {
     assert!(checked >= 400, "{checked} of {queries} checked");
 }
 
-/// Probe for issue 27 item 3: how often the hulls of non-convex solids (GJK on the
+/// Probe (`docs/performance.md`, the convex path): how often the hulls of non-convex solids (GJK on the
 /// supports of their chains' hulls, witnesses moved to the surfaces) would answer a close
 /// query at the default width, and what that costs against the traversal.
 #[test]

@@ -54,7 +54,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-/// Gap range of the OCCT sweep's near-touching poses (the brief of issue 28: 1e-2..1e-6).
+/// Gap range of the OCCT sweep's near-touching poses (`docs/verification.md`, "OpenCASCADE on the true curved surfaces": 1e-2..1e-6).
 pub const OCCT_NEAR_GAPS: (f64, f64) = (1e-6, 1e-2);
 
 /// Poses per job (an OCCT query takes 5-20 ms: small blocks balance the threads).

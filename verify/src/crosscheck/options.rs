@@ -8,7 +8,7 @@ pub const DEFAULT_POSES: usize = 100;
 pub const DEFAULT_CONVEX_POSES: usize = 20;
 /// Default eps values (two decades, as in the committed reports).
 pub const DEFAULT_EPS: [f64; 2] = [1e-3, 1e-4];
-/// Default poses per pair of the OCCT sweep (issue 28: at least 200 per pair). 45 pairs x 200
+/// Default poses per pair of the OCCT sweep (`docs/verification.md`: at least 200 per pair). 45 pairs x 200
 /// poses at 5-20 ms per OCCT query: about 1.5 minutes on 2 cores.
 pub const DEFAULT_OCCT_POSES: usize = 200;
 /// Eps of revdist's trees in the OCCT sweep: the default of the mesh check, and 1e-7, where
