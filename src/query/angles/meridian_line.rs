@@ -30,7 +30,7 @@
 //! callers that certify a lower bound from it must take that bound from elsewhere
 //! (`docs/verification.md`, "The corner case").
 
-use super::radial_field::ParamCircle;
+use super::radial_field::{bisect, h_and_f, ParamCircle, RadialField};
 use crate::poly::solve::{
     root_clusters_into, roots_candidate_len, roots_scratch_len, RootCluster, RootKind, BINOM,
 };
@@ -152,8 +152,8 @@ pub enum FieldAngles {
 }
 
 impl FieldAngles {
-    /// The weaker of two outcomes that both appended angles.
-    fn and(self, other: FieldAngles) -> FieldAngles {
+    /// The weaker of two outcomes: `Constant` over `Clustered` over `Isolated`.
+    pub fn and(self, other: FieldAngles) -> FieldAngles {
         match (self, other) {
             (FieldAngles::Constant, _) | (_, FieldAngles::Constant) => FieldAngles::Constant,
             (FieldAngles::Clustered, _) | (_, FieldAngles::Clustered) => FieldAngles::Clustered,
@@ -162,32 +162,14 @@ impl FieldAngles {
     }
 }
 
-/// Bisection steps of a branch root inside a cluster: the span is at most a half circle
-/// (`pi`), and 64 halvings bring it below the spacing of doubles near `2 pi`.
-const CLUSTER_BISECTIONS: usize = 64;
-
 /// Appends every sign change of `f` between consecutive angles of `pts` (ascending),
-/// bisected to full precision.
+/// located to full precision ([`bisect`]).
 fn bisect_sign_changes(f: &impl Fn(f64) -> f64, pts: &[f64], out: &mut Vec<f64>) {
     for w in pts.windows(2) {
-        let (mut a, mut b) = (w[0], w[1]);
-        let (fa, fb) = (f(a), f(b));
-        if !(fa.is_finite() && fb.is_finite()) || fa.signum() == fb.signum() || fa == 0.0 {
-            continue;
+        let (fa, fb) = (f(w[0]), f(w[1]));
+        if fa.is_finite() && fb.is_finite() && fa != 0.0 && fa.signum() != fb.signum() {
+            out.push(bisect(f, w[0], w[1], fa));
         }
-        let sa = fa.signum();
-        for _ in 0..CLUSTER_BISECTIONS {
-            let m = 0.5 * (a + b);
-            if m <= a || m >= b {
-                break;
-            }
-            if f(m).signum() == sa {
-                a = m;
-            } else {
-                b = m;
-            }
-        }
-        out.push(0.5 * (a + b));
     }
 }
 
@@ -233,12 +215,15 @@ fn push_roots<const N: usize>(
     outcome
 }
 
-/// `q = rho^2`, `q'` and `z'` of the circle at `theta`.
-fn rho2_and_slopes(c: &ParamCircle, theta: f64) -> (f64, f64, f64) {
-    let (st, ct) = theta.sin_cos();
-    let p = c.o + c.u * ct + c.v * st;
-    let dp = c.v * ct - c.u * st;
-    (p.x * p.x + p.y * p.y, 2.0 * (p.x * dp.x + p.y * dp.y), dp.z)
+/// The field `F_s = s n_rho rho + n_z z` of the meridian line with unit normal `n`, branch
+/// `s` (`s = -1`: the mirror image), as a [`RadialField`].
+fn line_field(n: Vector2<f64>, s: f64) -> RadialField {
+    RadialField {
+        a: s * n.x,
+        b: 0.0,
+        c1: n.y,
+        c2: 0.0,
+    }
 }
 
 /// Appends the critical angles of `F_s` (both branches) along `c` for the meridian line
@@ -251,10 +236,8 @@ pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>)
     }
     // The unsquared equations of the two branches: 2 rho F_s' = s n_rho q' + 2 n_z rho z'.
     let branch = |s: f64| {
-        move |theta: f64| {
-            let (q, dq, dz) = rho2_and_slopes(c, theta);
-            s * n.x * dq + 2.0 * n.y * q.sqrt() * dz
-        }
+        let f = line_field(n, s);
+        move |theta: f64| h_and_f(c, &f, theta).0
     };
     let (plus, minus) = (branch(1.0), branch(-1.0));
     let start = out.len();
@@ -304,10 +287,8 @@ pub fn line_field_levels(
     }
     // The unsquared equations of the two branches: F_s - level = s n_rho rho + n_z z - level.
     let branch = |s: f64| {
-        move |theta: f64| {
-            let p = c.point(theta);
-            s * n.x * p.x.hypot(p.y) + n.y * p.z - level
-        }
+        let f = line_field(n, s);
+        move |theta: f64| h_and_f(c, &f, theta).1 - level
     };
     let (plus, minus) = (branch(1.0), branch(-1.0));
     let start = out.len();

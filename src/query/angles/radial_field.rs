@@ -83,7 +83,7 @@ fn grid_sin_cos() -> &'static [(f64, f64); SWEEP_SAMPLES] {
 }
 
 /// H = 2 rho F' at theta (see module doc), and F.
-fn h_and_f(c: &ParamCircle, f: &RadialField, theta: f64) -> (f64, f64) {
+pub(super) fn h_and_f(c: &ParamCircle, f: &RadialField, theta: f64) -> (f64, f64) {
     let (s, co) = theta.sin_cos();
     h_and_f_sc(c, f, s, co)
 }
@@ -210,7 +210,7 @@ fn field_scale(c: &ParamCircle, f: &RadialField) -> f64 {
 /// does), but convergence is superlinear, so a root costs ~10 evaluations instead of ~60.
 /// A bisection step replaces false position whenever the previous step failed to halve the
 /// bracket, which keeps the worst case linear.
-fn bisect(g: impl Fn(f64) -> f64, mut a: f64, mut b: f64, mut ga: f64) -> f64 {
+pub(super) fn bisect(g: impl Fn(f64) -> f64, mut a: f64, mut b: f64, mut ga: f64) -> f64 {
     let mut gb = g(b);
     if gb == 0.0 {
         return b;

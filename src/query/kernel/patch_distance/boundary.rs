@@ -151,14 +151,12 @@ pub(super) fn boundary_vs_patch(
             }
         }
         (Kernel::Binormals, Core::Line { n, c }) => {
-            let critical = line_field_critical(&circle, n, &mut thetas);
-            let levels = match critical {
+            let solve = match line_field_critical(&circle, n, &mut thetas) {
                 FieldAngles::Constant => FieldAngles::Constant,
-                _ => line_field_levels(&circle, n, c, &mut thetas),
+                critical => critical.and(line_field_levels(&circle, n, c, &mut thetas)),
             };
-            clustered = [critical, levels].contains(&FieldAngles::Clustered);
-            if [critical, levels].contains(&FieldAngles::Constant) {
-                clustered = false;
+            clustered = solve == FieldAngles::Clustered;
+            if solve == FieldAngles::Constant {
                 thetas.clear();
                 // The line field is constant along the circle: a flat annulus and a circle
                 // in a parallel plane (closed form), else a circle coaxial with the cone or
