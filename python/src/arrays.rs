@@ -12,7 +12,7 @@ use pyo3::types::{PyDict, PyList};
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::ProfileError;
 
-use crate::errors::value_error;
+use crate::errors::{shape_text, value_error};
 
 /// Largest integer that float64 holds exactly: integers beyond it would be rounded.
 const EXACT_INT: f64 = 9_007_199_254_740_992.0;
@@ -56,21 +56,6 @@ fn floats(what: &str, value: &Bound<'_, PyAny>) -> PyResult<Floats> {
         shape: array.shape().to_vec(),
         values,
     })
-}
-
-/// `(2, 5)`, `(7,)` as Python writes shapes.
-fn shape_text(shape: &[usize]) -> String {
-    match shape {
-        [n] => format!("({n},)"),
-        _ => format!(
-            "({})",
-            shape
-                .iter()
-                .map(usize::to_string)
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-    }
 }
 
 /// The rows of an `(n, 2)` array as points `[rho, z]`.

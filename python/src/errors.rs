@@ -13,3 +13,18 @@ pub fn value_error(e: impl std::fmt::Display) -> PyErr {
 pub fn not_found(message: impl std::fmt::Display) -> PyErr {
     PyFileNotFoundError::new_err(message.to_string())
 }
+
+/// `(2, 5)`, `(7,)`, `()` as Python writes shapes, for messages about arrays.
+pub fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}

@@ -9,7 +9,7 @@ use numpy::PyReadonlyArrayDyn;
 use pyo3::PyResult;
 use revdist::request::{pose_from_matrix, pose_from_quaternion};
 
-use crate::errors::value_error;
+use crate::errors::{shape_text, value_error};
 
 /// Poses read from an array, and whether it held a single pose (`(7,)` or `(4, 4)`).
 pub struct Poses {
@@ -67,21 +67,6 @@ pub fn read(name: &str, array: &PyReadonlyArrayDyn<'_, f64>) -> PyResult<Poses> 
             "{name} must have shape {SHAPES}; got shape {}",
             shape_text(shape)
         ))),
-    }
-}
-
-/// `(2, 5)`, `(7,)`, `()` as Python writes shapes.
-fn shape_text(shape: &[usize]) -> String {
-    match shape {
-        [n] => format!("({n},)"),
-        _ => format!(
-            "({})",
-            shape
-                .iter()
-                .map(|n| n.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
     }
 }
 

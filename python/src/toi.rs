@@ -67,7 +67,9 @@ fn at_eps(solid: &PySolid, eps: Option<f64>, name: &str) -> PyResult<Solid> {
     };
     check_eps(eps).map_err(value_error)?;
     let profile = solid.solid.profile.clone().ok_or_else(|| {
-        value_error(format!("{name}: this solid has no profile to rebuild at eps {eps}"))
+        value_error(format!(
+            "{name}: this solid has no profile to rebuild at eps {eps}"
+        ))
     })?;
     Solid::from_profile(profile, eps).map_err(|e| value_error(format!("{name}: {e}")))
 }
@@ -162,10 +164,7 @@ fn arrays<'py>(py: Python<'py>, answers: &[TimeOfImpact]) -> PyResult<Bound<'py,
     }
     let col = |f: &dyn Fn(&TimeOfImpact) -> f64| answers.iter().map(f).collect::<Vec<f64>>();
     let count = |f: &dyn Fn(&TimeOfImpact) -> usize| {
-        answers
-            .iter()
-            .map(|r| f(r) as i64)
-            .collect::<Vec<i64>>()
+        answers.iter().map(|r| f(r) as i64).collect::<Vec<i64>>()
     };
     let out = PyDict::new(py);
     out.set_item(
