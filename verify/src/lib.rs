@@ -4,6 +4,7 @@ pub mod baselines;
 pub mod bounds;
 pub mod circles;
 pub mod companion;
+pub mod contact;
 pub mod crosscheck;
 pub mod exact_circle;
 pub mod oracle;

@@ -12,7 +12,8 @@
 //! constructed pair `(p, q)` is then a realised pair at distance `|g|` (to rounding).
 
 use super::chain::{lift_vector, planar_normal, Pair, SurfacePoint};
-use nalgebra::{Isometry3, Point2, Translation3, Unit, UnitQuaternion, Vector2, Vector3};
+use crate::contact;
+use nalgebra::{Isometry3, Point2, Translation3, UnitQuaternion, Vector2, Vector3};
 use revdist::query::ProfileArc;
 use revdist::rng::SplitMix64;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -374,33 +375,18 @@ fn normal(rng: &mut SplitMix64, chain: &[ProfileArc], x: &SurfacePoint) -> Vecto
     }
 }
 
-/// A rotation taking `from` to `to` (unit vectors), any axis for opposite vectors.
-fn rotation_between(from: &Vector3<f64>, to: &Vector3<f64>) -> UnitQuaternion<f64> {
-    UnitQuaternion::rotation_between(from, to).unwrap_or_else(|| {
-        let axis = from.cross(&Vector3::x());
-        let axis = if axis.norm() > 0.1 {
-            axis
-        } else {
-            from.cross(&Vector3::y())
-        };
-        UnitQuaternion::from_axis_angle(&Unit::new_normalize(axis), PI)
-    })
-}
-
 /// The contact pose: `q` of B at `p + g n_A`, `n_B` turned to `-n_A` (module doc).
 fn contact_pose(rng: &mut SplitMix64, cfg: &mut PieceConfig, g: f64) {
     let p = surface_point(rng, &cfg.a);
     let q = surface_point(rng, &cfg.b);
     let na = normal(rng, &cfg.a, &p);
     let nb = normal(rng, &cfg.b, &q);
-    let twist = UnitQuaternion::from_axis_angle(&Unit::new_normalize(na), rng.range(0.0, TAU));
-    let rot = twist * rotation_between(&nb, &(-na));
+    let spin = rng.range(0.0, TAU);
     let (pa, qb) = (
         super::chain::point(&cfg.a, &p),
         super::chain::point(&cfg.b, &q),
     );
-    let t = pa.coords + na * g - rot * qb.coords;
-    cfg.pos_ab = Isometry3::from_parts(Translation3::from(t), rot);
+    cfg.pos_ab = contact::contact_pose((pa.coords, na), (qb.coords, nb), g, spin);
     cfg.contact = Some(Pair::new(&cfg.a, &cfg.b, &cfg.pos_ab, p, q));
 }
 

@@ -11,7 +11,8 @@
 use super::cases::PoseSpec;
 use super::placement::spec;
 use super::pool::Shape;
-use nalgebra::{Point2, Unit, UnitQuaternion, Vector2, Vector3};
+use crate::contact::contact_pose;
+use nalgebra::{Point2, Vector2, Vector3};
 use revdist::nurbs::NurbsCurve;
 use revdist::rng::SplitMix64;
 
@@ -225,16 +226,9 @@ pub fn corner_contact(rng: &mut SplitMix64, a: &Shape, b: &Shape) -> Option<(Pos
     // B's feature in its meridian plane at angle 0.
     let pb = Vector3::new(fb.point.x, 0.0, fb.point.y);
     let nb = Vector3::new(fb.normal.x, 0.0, fb.normal.y);
-    let to_contact = UnitQuaternion::rotation_between(&nb, &-na).unwrap_or_else(|| {
-        UnitQuaternion::from_axis_angle(&any_perpendicular(&nb), std::f64::consts::PI)
-    });
-    let spin = UnitQuaternion::from_axis_angle(
-        &Unit::new_normalize(na),
-        rng.range(0.0, std::f64::consts::TAU),
-    );
-    let rot = spin * to_contact;
-    let t = pa + na * gap - rot * pb;
-    let q = rot.into_inner();
+    let spin = rng.range(0.0, std::f64::consts::TAU);
+    let pose = contact_pose((pa, na), (pb, nb), gap, spin);
+    let (t, q) = (pose.translation.vector, pose.rotation.into_inner());
     let note = format!(
         "corner ({:.4}, {:.4}) of A against {} ({:.4}, {:.4}) of B, gap {gap:e}",
         fa.point.x,
@@ -244,14 +238,4 @@ pub fn corner_contact(rng: &mut SplitMix64, a: &Shape, b: &Shape) -> Option<(Pos
         fb.point.y
     );
     Some((spec(t, [q.w, q.i, q.j, q.k]), note))
-}
-
-/// A unit vector perpendicular to `v` (non-zero).
-fn any_perpendicular(v: &Vector3<f64>) -> Unit<Vector3<f64>> {
-    let other = if v.x.abs() < 0.9 {
-        Vector3::x()
-    } else {
-        Vector3::y()
-    };
-    Unit::new_normalize(v.cross(&other))
 }
