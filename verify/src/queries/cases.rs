@@ -141,8 +141,10 @@ pub fn make_case(id: usize, seed: u64, shapes: &[Shape], eps_list: &[f64], set: 
     };
     let refine = rng.chance(0.15);
     let u = rng.next_f64();
+    // The corner share is drawn after `u`, so the other kinds keep their split of the rest.
+    let corner = rng.chance(CORNER_SHARE);
     let kind = match u {
-        _ if rng.chance(CORNER_SHARE) => PoseKind::Corner,
+        _ if corner => PoseKind::Corner,
         _ if u < 0.07 => PoseKind::Far,
         _ if u < 0.25 => PoseKind::Separated,
         _ if u < 0.55 => PoseKind::NearTouching,
