@@ -90,7 +90,7 @@ fn touching_sphere_patches() {
     let a = ProfileArc::Arc {
         center: Point2::new(0.0, -4.92221957180668),
         radius: 3.327559308505056,
-        phi_start: -1.5707963267948966,
+        phi_start: -std::f64::consts::FRAC_PI_2,
         sweep: 1.5543077346920895,
     };
     let b = ProfileArc::Arc {
