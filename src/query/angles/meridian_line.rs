@@ -29,6 +29,14 @@
 //! solve reports [`FieldAngles::Clustered`]: the angle set is then not proven complete, and
 //! callers that certify a lower bound from it must take that bound from elsewhere
 //! (`docs/verification.md`, "The corner case").
+//!
+//! **Vanishing equations.** For a cone or cylinder (`n_rho != 0`) the field is constant
+//! along a circle only when the circle is coaxial (a circle on a circular cone, or on a
+//! level cone of its field, is a parallel). A squared equation that vanishes within its
+//! noise along any other circle is a nearly flat cone with a circle nearly in its plane:
+//! the unsquared field still varies (by 1e-8 in a case where the annuli crossed), so the
+//! half circle is resolved on the branch functions and reported as a cluster
+//! (`docs/verification.md`, "Crossing lenses").
 
 use super::radial_field::{bisect, h_and_f, ParamCircle, RadialField};
 use crate::poly::solve::{
@@ -37,6 +45,11 @@ use crate::poly::solve::{
 use crate::tolerances::{COEFF_NOISE_FACTOR, S_TOL};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
+
+/// Angles per half circle at which a vanishing equation's branches are scanned for sign
+/// changes (module docs, "Vanishing equations"); the result is marked clustered, so the
+/// count bounds cost, not correctness.
+const VANISHING_GRID: usize = 64;
 
 /// Bernstein coefficients of a polynomial of degree `N - 1` on `s` in [0, 1].
 type Poly<const N: usize> = [f64; N];
@@ -173,24 +186,38 @@ fn bisect_sign_changes(f: &impl Fn(f64) -> f64, pts: &[f64], out: &mut Vec<f64>)
     }
 }
 
-/// Roots in `s` of `p` mapped to angles; [`FieldAngles::Constant`] when `p` vanishes
-/// identically (every coefficient within `noise`). A cluster appends its representative,
-/// its span's ends and the sign changes of each of `branches` (the unsquared equations
-/// whose product `p` is) between them, and makes the outcome [`FieldAngles::Clustered`].
+/// Roots in `s` of `p` mapped to angles. A cluster appends its representative, its span's
+/// ends and the sign changes of each of `branches` (the unsquared equations whose product
+/// `p` is) between them, and makes the outcome [`FieldAngles::Clustered`].
+///
+/// When `p` is within `noise` everywhere the outcome is [`FieldAngles::Constant`] only for a
+/// `coaxial` circle, the one case where the field is truly constant along it (module docs,
+/// "Vanishing equations"); otherwise the whole half circle is one cluster, resolved on the
+/// branches at [`VANISHING_GRID`] angles.
 fn push_roots<const N: usize>(
     p: &Poly<N>,
     noise: f64,
     theta0: f64,
+    coaxial: bool,
     branches: &[&dyn Fn(f64) -> f64],
     out: &mut Vec<f64>,
 ) -> FieldAngles {
+    let angle = |s: f64| theta0 + 2.0 * (2.0 * s - 1.0).atan();
     if p.iter().all(|c| c.abs() <= noise) {
-        return FieldAngles::Constant;
+        if coaxial {
+            return FieldAngles::Constant;
+        }
+        let pts: Vec<f64> = (0..=VANISHING_GRID)
+            .map(|i| angle(i as f64 / VANISHING_GRID as f64))
+            .collect();
+        for f in branches {
+            bisect_sign_changes(f, &pts, out);
+        }
+        return FieldAngles::Clustered;
     }
     let mut scratch = [0.0; 64];
     let mut cand = [(0.0, RootKind::Odd); 32];
     debug_assert!(roots_scratch_len(N) <= 64 && roots_candidate_len(N) <= 32);
-    let angle = |s: f64| theta0 + 2.0 * (2.0 * s - 1.0).atan();
     let mut outcome = FieldAngles::Isolated;
     root_clusters_into(
         p,
@@ -240,6 +267,7 @@ pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>)
         move |theta: f64| h_and_f(c, &f, theta).0
     };
     let (plus, minus) = (branch(1.0), branch(-1.0));
+    let coaxial = c.is_coaxial();
     let start = out.len();
     let (nr2, nz2) = (n.x * n.x, n.y * n.y);
     let mut outcome = FieldAngles::Isolated;
@@ -252,7 +280,14 @@ pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>)
                 (2.0, &mul::<3, 3, 5>(&abs(&h.x), &abs(&h.xp))),
                 (2.0, &mul::<3, 3, 5>(&abs(&h.y), &abs(&h.yp))),
             ]));
-            push_roots(&h.dq, COEFF_NOISE_FACTOR * mag, theta0, &[&plus], out)
+            push_roots(
+                &h.dq,
+                COEFF_NOISE_FACTOR * mag,
+                theta0,
+                coaxial,
+                &[&plus],
+                out,
+            )
         } else {
             let zp2: Poly<5> = mul(&h.zp, &h.zp);
             let dq2: Poly<9> = mul(&h.dq, &h.dq);
@@ -261,7 +296,14 @@ pub fn line_field_critical(c: &ParamCircle, n: Vector2<f64>, out: &mut Vec<f64>)
             let mag_dq2: Poly<9> = mul(&abs(&h.dq), &abs(&h.dq));
             let mag_qzp2: Poly<9> = mul(&abs(&h.q), &abs(&zp2));
             let mag = max_abs(&lin(&[(nr2, &mag_dq2), (4.0 * nz2, &mag_qzp2)]));
-            push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, &[&plus, &minus], out)
+            push_roots(
+                &p,
+                COEFF_NOISE_FACTOR * mag,
+                theta0,
+                coaxial,
+                &[&plus, &minus],
+                out,
+            )
         };
         outcome = outcome.and(half);
         if outcome == FieldAngles::Constant {
@@ -291,6 +333,7 @@ pub fn line_field_levels(
         move |theta: f64| h_and_f(c, &f, theta).1 - level
     };
     let (plus, minus) = (branch(1.0), branch(-1.0));
+    let coaxial = c.is_coaxial();
     let start = out.len();
     let nr2 = n.x * n.x;
     let mut outcome = FieldAngles::Isolated;
@@ -303,7 +346,14 @@ pub fn line_field_levels(
         let ra = lin(&[(level.abs(), &h.d), (n.y.abs(), &abs(&h.z))]);
         let ra2: Poly<5> = mul(&ra, &ra);
         let mag = max_abs(&lin(&[(nr2, &abs(&h.q)), (1.0, &ra2)]));
-        let half = push_roots(&p, COEFF_NOISE_FACTOR * mag, theta0, &[&plus, &minus], out);
+        let half = push_roots(
+            &p,
+            COEFF_NOISE_FACTOR * mag,
+            theta0,
+            coaxial,
+            &[&plus, &minus],
+            out,
+        );
         outcome = outcome.and(half);
         if outcome == FieldAngles::Constant {
             out.truncate(start);

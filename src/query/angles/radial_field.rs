@@ -20,6 +20,7 @@
 //! that tangential (double) roots are not lost. Extra angles are harmless: every caller
 //! turns an angle into a pair of points on the surfaces and measures it exactly.
 
+use crate::tolerances::AXIS_TOLERANCE;
 use nalgebra::{Point3, Vector3};
 use std::f64::consts::TAU;
 
@@ -54,6 +55,14 @@ impl ParamCircle {
     /// Tangent (not normalised) at `theta`.
     pub fn tangent(&self, theta: f64) -> Vector3<f64> {
         -self.u * theta.sin() + self.v * theta.cos()
+    }
+    /// Whether the circle is coaxial with its frame's z axis, to [`AXIS_TOLERANCE`]
+    /// (centre on the axis, plane perpendicular to it).
+    pub fn is_coaxial(&self) -> bool {
+        let n = self.u.cross(&self.v);
+        let scale = 1.0 + self.o.coords.norm() + self.radius();
+        self.o.x.hypot(self.o.y) <= AXIS_TOLERANCE * scale
+            && n.x.hypot(n.y) <= AXIS_TOLERANCE * n.norm()
     }
 }
 

@@ -131,7 +131,7 @@ pub(super) fn boundary_vs_patch(
     // rest, but the answer is then an upper bound only (`angles::meridian_line`, "Clusters").
     let mut clustered = false;
     let exact = match (kernel, o.core()) {
-        (Kernel::Binormals, Core::Circle { .. }) if coaxial_circle(&circle) => {
+        (Kernel::Binormals, Core::Circle { .. }) if circle.is_coaxial() => {
             // Coaxial with the torus: the distance to the patch is the same at every angle.
             thetas.push(0.0);
             true
@@ -178,13 +178,6 @@ pub(super) fn boundary_vs_patch(
         emit_feet(circle.point(th));
     }
     !exact || clustered
-}
-
-/// Whether the circle (frame O) is coaxial with O's z axis, to [`AXIS_TOLERANCE`].
-fn coaxial_circle(c: &ParamCircle) -> bool {
-    let n = c.u.cross(&c.v);
-    let scale = 1.0 + c.o.coords.norm() + c.radius();
-    c.o.x.hypot(c.o.y) <= AXIS_TOLERANCE * scale && n.x.hypot(n.y) <= AXIS_TOLERANCE * n.norm()
 }
 
 /// The closest angle of a circle lying in a plane `z = const` (frame O) to the flat annulus

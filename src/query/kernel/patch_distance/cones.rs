@@ -1,27 +1,56 @@
 //! Case (a) of [`super`] for two straight pieces (cones): common normals from the Gauss
 //! images' latitude circles, parallel axes and flat disks (annuli) handled explicitly.
+//!
+//! **Conditioning.** The solve is exact up to rounding only away from three degenerate
+//! configurations, where a rounding error of the direction is amplified until a common
+//! normal is missed or measured off its place (campaign cases: two nearly flat annuli, a
+//! nearly flat cone against one with an axis 4.6e-6 rad off, the kernel 6e-10 above a
+//! crossing). There the answer is marked sampled and the caller subdivides
+//! (`docs/verification.md`, "Crossing lenses"):
+//! * axes nearly parallel but not coaxial-parallel: the latitude equations divide by
+//!   `1 - k^2` ([`CONE_AXES_CONDITION`]);
+//! * latitude circles nearly tangent: the direction moves by `sqrt` of the rounding of
+//!   `rem` ([`CONE_TANGENCY`]);
+//! * a nearly flat cone: the radial direction of a normal divides by `n_rho`
+//!   ([`CONE_FLATNESS`]).
 
 use super::*;
 
+/// `1 - k^2` (`k` the cosine between the axes) below which non-parallel axes count as
+/// nearly parallel: the latitude solve loses `eps / (1 - k^2)`, 1e-10 at this value.
+const CONE_AXES_CONDITION: f64 = 1e-6;
+
+/// `|1 - |base|^2|` below which the latitude circles count as nearly tangent: the direction
+/// then moves by about `sqrt(eps / rem)`-amplified rounding, 1e-12 at this value.
+const CONE_TANGENCY: f64 = 1e-8;
+
+/// `|n_rho|` below which a straight piece that is not exactly flat counts as nearly flat:
+/// its radial direction for a normal divides rounding by `n_rho`, 1e-12 at this value.
+const CONE_FLATNESS: f64 = 1e-4;
+
 /// Interior common normals of two straight pieces (cones, cylinders, annuli) via their
-/// Gauss images (circles of latitude). Emits (point on a, point on b) in A's frame.
+/// Gauss images (circles of latitude). Emits (point on a, point on b) in A's frame; returns
+/// whether the configuration is ill-conditioned (module docs, "Conditioning"): the pairs
+/// are then realised but not proven complete.
 pub(super) fn cone_cone(
     a: &Patch,
     b: &Patch,
     pos_ab: &Isometry3<f64>,
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
-) {
+) -> bool {
     let (ProfileArc::Segment { start: a0, end: a1 }, ProfileArc::Segment { start: b0, end: b1 }) =
         (a.arc, b.arc)
     else {
-        return;
+        return false;
     };
     let Core::Line { n: na, .. } = a.core() else {
-        return;
+        return false;
     };
     let Core::Line { n: nb, .. } = b.core() else {
-        return;
+        return false;
     };
+    let nearly_flat = |n: nalgebra::Vector2<f64>| n.x != 0.0 && n.x.abs() < CONE_FLATNESS;
+    let mut ill_conditioned = nearly_flat(na) || nearly_flat(nb);
     let ez = Vector3::z();
     let axis_b = pos_ab.rotation * ez;
     let k = axis_b.z;
@@ -45,6 +74,7 @@ pub(super) fn cone_cone(
         // Latitudes: dir . ez = sa * na.y, dir . axis_b = sb * nb.y.
         let m = ez.cross(&axis_b);
         let det = 1.0 - k * k;
+        ill_conditioned |= det < CONE_AXES_CONDITION;
         for sa in [1.0, -1.0] {
             for sb in [1.0, -1.0] {
                 let (al, be) = (sa * na.y, sb * nb.y);
@@ -52,6 +82,7 @@ pub(super) fn cone_cone(
                 let mu = (be - al * k) / det;
                 let base = ez * lam + axis_b * mu;
                 let rem = 1.0 - base.norm_squared();
+                ill_conditioned |= rem.abs() < CONE_TANGENCY;
                 if rem < -1e-12 {
                     continue;
                 }
@@ -94,6 +125,7 @@ pub(super) fn cone_cone(
             emit(pos_ab * p, pos_ab * q)
         });
     }
+    ill_conditioned
 }
 
 /// Radial directions `e` (horizontal unit vectors) where the normal line of a straight piece

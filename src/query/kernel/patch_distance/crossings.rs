@@ -37,31 +37,104 @@ fn implicit_halves(o: &Patch, x: &Point3<f64>) -> [f64; 2] {
     }
 }
 
-/// Points of `g`'s meridians (at angles `thetas`, frame G) where an implicit function of
-/// `o`'s halves changes sign ([`implicit_halves`]), each emitted with its closest point on
-/// `o` (O's frame): a crossing of the two patches when that distance is zero. Every
-/// emitted pair is two real points of the patches, so extra candidates never undercut the
-/// distance. `pos_og` places G in O.
+/// Normalised parameter of the meridian point `m` on `g`'s piece (`m` on the piece), for
+/// sampling a meridian at an interior candidate's own point.
+pub(super) fn piece_param(g: &Patch, m: Point2<f64>) -> Option<f64> {
+    match g.arc {
+        ProfileArc::Arc { center, .. } => {
+            let d = m - center;
+            g.arc.arc_param(d.y.atan2(d.x))
+        }
+        ProfileArc::Segment { start, end } => {
+            let e = end - start;
+            let l2 = e.norm_squared();
+            (l2 > 0.0).then(|| ((m - start).dot(&e) / l2).clamp(0.0, 1.0))
+        }
+    }
+}
+
+/// A meridian of the crossing scan: its revolution angle, and the parameters of interior
+/// candidates on it (sampled too, so that the scan starts from each candidate: the
+/// extremum of a crossing lens, [`super::second_order`], sees the loop around it as a sign
+/// change between itself and a neighbouring sample).
+#[derive(Debug, Clone)]
+pub(super) struct Meridian {
+    pub theta: f64,
+    pub through: Vec<f64>,
+}
+
+impl Meridian {
+    /// A meridian scanned at the uniform samples only.
+    pub fn fixed(theta: f64) -> Self {
+        Meridian {
+            theta,
+            through: Vec::new(),
+        }
+    }
+
+    /// The meridian of `g` through its surface point `x` (g's frame), sampled at `x` too.
+    pub fn through(g: &Patch, x: &Point3<f64>) -> Self {
+        let rho = norm2(x.x, x.y);
+        Meridian {
+            theta: x.y.atan2(x.x),
+            through: piece_param(g, Point2::new(rho, x.z)).into_iter().collect(),
+        }
+    }
+
+    /// The meridians sorted by angle, those within [`MERIDIAN_DEDUP`] of each other merged
+    /// into one that keeps every candidate's parameter (the four sign combinations of a
+    /// common normal share its meridians).
+    pub fn merged(mut list: Vec<Meridian>) -> Vec<Meridian> {
+        list.sort_by(|x, y| x.theta.total_cmp(&y.theta));
+        let mut out: Vec<Meridian> = Vec::with_capacity(list.len());
+        for m in list {
+            match out.last_mut() {
+                Some(last) if (m.theta - last.theta).abs() <= MERIDIAN_DEDUP => {
+                    last.through.extend(m.through)
+                }
+                _ => out.push(m),
+            }
+        }
+        out
+    }
+}
+
+/// Points of `g`'s meridians where an implicit function of `o`'s halves changes sign
+/// ([`implicit_halves`]), each emitted with its closest point on `o` (O's frame): a
+/// crossing of the two patches when that distance is zero. Every emitted pair is two real
+/// points of the patches, so extra candidates never undercut the distance. `pos_og` places
+/// G in O.
 pub(super) fn meridian_crossings(
     g: &Patch,
     o: &Patch,
     pos_og: &Isometry3<f64>,
-    thetas: &[f64],
+    meridians: &[Meridian],
     emit: &mut dyn FnMut(Point3<f64>, Point3<f64>),
 ) {
     let n = MERIDIAN_SAMPLES;
     // The meridian's profile samples do not depend on the meridian: computed once.
-    let mut samples = [Point2::origin(); MERIDIAN_SAMPLES + 1];
-    for (i, m) in samples.iter_mut().enumerate() {
-        *m = g.arc.point_at(i as f64 / n as f64);
-    }
-    for &th in thetas {
-        let e = e_rho(th);
+    let uniform: Vec<(f64, Point2<f64>)> = (0..=n)
+        .map(|i| {
+            let s = i as f64 / n as f64;
+            (s, g.arc.point_at(s))
+        })
+        .collect();
+    let mut samples = Vec::with_capacity(n + 2);
+    for m in meridians {
+        samples.clear();
+        samples.extend_from_slice(&uniform);
+        for &s in m.through.iter().filter(|s| (0.0..=1.0).contains(*s)) {
+            let k = samples.partition_point(|x| x.0 < s);
+            if samples.get(k).is_none_or(|x| x.0 != s) {
+                samples.insert(k, (s, g.arc.point_at(s)));
+            }
+        }
+        let e = e_rho(m.theta);
         let at = |s: f64| pos_og * lift(g.arc.point_at(s), &e);
-        let mut prev = implicit_halves(o, &(pos_og * lift(samples[0], &e)));
-        for (i, m) in samples.iter().enumerate().skip(1) {
-            let (s0, s1) = ((i - 1) as f64 / n as f64, i as f64 / n as f64);
-            let cur = implicit_halves(o, &(pos_og * lift(*m, &e)));
+        let mut prev = implicit_halves(o, &(pos_og * lift(samples[0].1, &e)));
+        for k in 1..samples.len() {
+            let (s0, s1) = (samples[k - 1].0, samples[k].0);
+            let cur = implicit_halves(o, &(pos_og * lift(samples[k].1, &e)));
             for half in 0..2 {
                 if prev[half] != 0.0 && prev[half].signum() == cur[half].signum() {
                     continue;

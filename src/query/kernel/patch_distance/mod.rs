@@ -37,14 +37,19 @@
 //! coaxial circles (constant distance), a circle parallel to a flat annulus, a sphere centre
 //! on the other patch's axis.
 //!
-//! Interior intersection loops that touch no boundary are reported through
-//! [`PatchDistance::interior_pairs`]: at the deepest point of such a loop the common normal
-//! has both points inside the other solid, which the caller (who knows the solids) tests.
+//! Interior intersection loops that touch no boundary are found by the crossing scan (d),
+//! which samples every interior candidate's meridian at the candidate itself; a loop the
+//! scan misses encloses a *lens* whose extremum is an interior candidate at a local maximum
+//! of the distance along its patch, and such a candidate ([`second_order`]) makes the
+//! answer `sampled` (docs/verification.md, "Crossing lenses"). The interior pairs are also
+//! reported through [`PatchDistance::interior_pairs`]: at the deepest point of a loop the
+//! common normal may have both points inside the other solid, which the caller (who knows
+//! the solids) tests as an interpenetration.
 //!
 //! **Layout.** This file is the driver ([`patch_distance_memo`]: coaxial pairs, the order of
 //! the cases, the best pair); each case has its own file: `interior.rs` (a) for a toroidal
-//! patch, `cones.rs` (a) for two cones, `boundary.rs` (b), `parallels.rs` (c) and
-//! `crossings.rs` (d).
+//! patch, `cones.rs` (a) for two cones, `boundary.rs` (b), `parallels.rs` (c),
+//! `crossings.rs` (d) and `second_order.rs` (the lens test).
 
 use super::planar;
 use crate::biarc::Disk;
@@ -69,13 +74,15 @@ mod cones;
 mod crossings;
 mod interior;
 mod parallels;
+mod second_order;
 
 use crate::tolerances::{FAST_PATH_REL, MERIDIAN_DEDUP};
 use boundary::{boundary_vs_patch, flat_annulus_angle, parallel_lower_bound};
 use cones::cone_cone;
-use crossings::{meridian_crossings, FIXED_MERIDIANS};
+use crossings::{meridian_crossings, Meridian, FIXED_MERIDIANS};
 use interior::{core_field, interior_via_core};
 use parallels::parallel_pair;
+use second_order::may_be_lens_extremum;
 
 /// Result of a patch-pair distance: the distance and the closest points (frame of patch A).
 #[derive(Debug, Clone, PartialEq)]
@@ -231,10 +238,12 @@ pub fn patch_distance_memo(
                     pairs.push((p, q));
                 });
             }
-            _ => cone_cone(a, b, pos_ab, &mut |p, q| {
-                best.consider(p, q);
-                pairs.push((p, q));
-            }),
+            _ => {
+                sampled |= cone_cone(a, b, pos_ab, &mut |p, q| {
+                    best.consider(p, q);
+                    pairs.push((p, q));
+                })
+            }
         }
     }
     // (b) boundary parallels of B against A, and of A against B.
@@ -308,22 +317,28 @@ pub fn patch_distance_memo(
     // implicit function along meridians (through every interior candidate and four
     // fixed ones).
     if best.d > 0.0 && opts.may_intersect {
-        let mut th_a: Vec<f64> = FIXED_MERIDIANS.to_vec();
-        let mut th_b: Vec<f64> = FIXED_MERIDIANS.to_vec();
+        let mut on_a: Vec<Meridian> = FIXED_MERIDIANS.map(Meridian::fixed).to_vec();
+        let mut on_b: Vec<Meridian> = FIXED_MERIDIANS.map(Meridian::fixed).to_vec();
         for (p, q) in &pairs {
-            th_a.push(p.y.atan2(p.x));
-            let qb = pos_ba * q;
-            th_b.push(qb.y.atan2(qb.x));
+            on_a.push(Meridian::through(a, p));
+            on_b.push(Meridian::through(b, &(pos_ba * q)));
         }
-        // The four sign combinations of a common normal share its meridians.
-        for th in [&mut th_a, &mut th_b] {
-            th.sort_by(f64::total_cmp);
-            th.dedup_by(|x, y| (*x - *y).abs() <= MERIDIAN_DEDUP);
-        }
-        meridian_crossings(b, a, pos_ab, &th_b, &mut |q, p| best.consider(p, q));
-        meridian_crossings(a, b, &pos_ba, &th_a, &mut |p, q| {
+        let (on_a, on_b) = (Meridian::merged(on_a), Meridian::merged(on_b));
+        meridian_crossings(b, a, pos_ab, &on_b, &mut |q, p| best.consider(p, q));
+        meridian_crossings(a, b, &pos_ba, &on_a, &mut |p, q| {
             best.consider(pos_ab * p, pos_ab * q)
         });
+        // Patches that cross in a loop inside both have an interior candidate at the loop's
+        // lens, a local maximum of the distance along a patch (`second_order`). When the
+        // scan through it found no crossing, the shortest candidate cannot be certified:
+        // the caller subdivides.
+        if best.d > 0.0
+            && pairs
+                .iter()
+                .any(|(p, q)| may_be_lens_extremum(a, b, pos_ab, p, q))
+        {
+            sampled = true;
+        }
     }
     PatchDistance {
         distance: best.d,
