@@ -52,6 +52,25 @@ fn volume_stage1_and_subdivision_bounds_hold() {
     assert!(p.contacts > 300 && p.contacts_met == p.contacts, "{p:?}");
 }
 
+/// The links that answer whole solids without the traversal: the closed forms of balls and
+/// solid tori and the convex path's interval, on primitives touching at rims and poles.
+#[test]
+fn closed_forms_and_convex_path_hold() {
+    let bounds = vec![Bound::ClosedForm, Bound::Convex];
+    let r = campaign(bounds.clone());
+    println!("{r}");
+    for b in bounds {
+        let t = r.tally(b).expect("tally");
+        assert!(t.configs >= CI_COUNT, "{}: {}", b.name(), t.configs);
+        assert_eq!(t.violations, 0, "{}: {:?}", b.name(), t.examples);
+        assert!(
+            t.positive * 5 >= t.configs,
+            "{}: too few separations",
+            b.name()
+        );
+    }
+}
+
 /// The search's realised pairs come within 1e-9 of the scale of the exact kernel's value
 /// on at least 99% of the piece pairs it solves: the reference is near the minimum, not
 /// only above it.

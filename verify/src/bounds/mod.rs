@@ -20,6 +20,7 @@ pub mod exact;
 pub mod nearest;
 pub mod pieces;
 pub mod report;
+pub mod solids;
 
 use pieces::FAMILIES;
 use report::{Power, Report, Tally};
@@ -50,9 +51,13 @@ pub enum Bound {
     Kernel,
     /// `LeafPair::bounds`, `tightened_lower`, `exact` lower fields.
     LeafStages,
+    /// The closed forms of balls and solid tori (whole solids, [`solids`]).
+    ClosedForm,
+    /// The convex path's certified interval (whole convex solids, [`solids`]).
+    Convex,
 }
 
-pub const BOUNDS: [Bound; 11] = [
+pub const BOUNDS: [Bound; 13] = [
     Bound::Sphere,
     Bound::Torus,
     Bound::Shell,
@@ -64,6 +69,8 @@ pub const BOUNDS: [Bound; 11] = [
     Bound::Subdivision,
     Bound::Kernel,
     Bound::LeafStages,
+    Bound::ClosedForm,
+    Bound::Convex,
 ];
 
 impl Bound {
@@ -80,13 +87,23 @@ impl Bound {
             Bound::Subdivision => "subdivision",
             Bound::Kernel => "kernel",
             Bound::LeafStages => "leaf-stages",
+            Bound::ClosedForm => "closed-form",
+            Bound::Convex => "convex",
         }
+    }
+
+    /// Whether the bound is checked on whole solids ([`solids`]) rather than piece chains.
+    pub fn whole_solids(self) -> bool {
+        matches!(self, Bound::ClosedForm | Bound::Convex)
     }
 
     pub fn from_name(s: &str) -> Option<Bound> {
         BOUNDS.iter().copied().find(|b| b.name() == s)
     }
 }
+
+/// Mixed into the seed for the whole-solid configurations' random stream.
+const SOLIDS_STREAM: u64 = 0x0050_11d5;
 
 /// A campaign's options.
 #[derive(Debug, Clone)]
@@ -110,6 +127,7 @@ pub fn run(opts: &Options) -> Report {
         opts.bounds.clone()
     };
     let threads = opts.threads.max(1);
+    let pieces_wanted = selected.iter().any(|b| !b.whole_solids());
     let results: Vec<(Vec<(Bound, Tally)>, Power)> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
             .map(|w| {
@@ -119,15 +137,24 @@ pub fn run(opts: &Options) -> Report {
                         selected.iter().map(|b| (*b, Tally::default())).collect();
                     let mut power = Power::default();
                     let root = SplitMix64(opts.seed);
+                    let solids_root = SplitMix64(opts.seed ^ SOLIDS_STREAM);
                     for k in (w..opts.count).step_by(threads) {
-                        let mut rng = root.fork(k as u64);
-                        let family = FAMILIES[k % FAMILIES.len()];
-                        let cfg = pieces::draw(&mut rng, family);
-                        let mut sink = checks::Sink {
-                            tallies: &mut tallies,
-                            power: &mut power,
-                        };
-                        checks::check(&cfg, &mut rng, &mut sink);
+                        if pieces_wanted {
+                            let mut rng = root.fork(k as u64);
+                            let family = FAMILIES[k % FAMILIES.len()];
+                            let cfg = pieces::draw(&mut rng, family);
+                            let mut sink = checks::Sink {
+                                tallies: &mut tallies,
+                                power: &mut power,
+                            };
+                            checks::check(&cfg, &mut rng, &mut sink);
+                        }
+                        // The whole-solid links draw from their own stream, so that the
+                        // piece configurations stay the same whichever bounds are asked.
+                        for (b, t) in tallies.iter_mut() {
+                            let mut rng = solids_root.fork(k as u64);
+                            solids::check(*b, &mut rng, t);
+                        }
                     }
                     (tallies, power)
                 })

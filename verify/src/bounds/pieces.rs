@@ -77,7 +77,7 @@ pub struct PieceConfig {
 }
 
 /// A gap of a contact, relative to the scale: 0, a tiny one of either sign, or a free one.
-fn gap(rng: &mut SplitMix64) -> f64 {
+pub(super) fn gap(rng: &mut SplitMix64) -> f64 {
     match rng.below(10) {
         0..=2 => 0.0,
         3..=5 => rng.log_range(1e-13, 1e-5),
@@ -335,7 +335,7 @@ fn flat_cone(rng: &mut SplitMix64) -> ProfileArc {
 }
 
 /// A random point of a chain, at a piece end (often a kink) with probability 0.4.
-fn surface_point(rng: &mut SplitMix64, chain: &[ProfileArc]) -> SurfacePoint {
+pub(super) fn surface_point(rng: &mut SplitMix64, chain: &[ProfileArc]) -> SurfacePoint {
     let piece = rng.below(chain.len());
     let s = match rng.below(5) {
         0 => 0.0,
@@ -391,7 +391,7 @@ fn contact_pose(rng: &mut SplitMix64, cfg: &mut PieceConfig, g: f64) {
 }
 
 /// A random pose at a distance of a few sizes (no contact).
-fn free_pose(rng: &mut SplitMix64, scale: f64) -> Isometry3<f64> {
+pub(super) fn free_pose(rng: &mut SplitMix64, scale: f64) -> Isometry3<f64> {
     let q = rng.quaternion();
     let rot = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
     let t = rng.direction() * rng.range(0.0, 3.0) * scale;
