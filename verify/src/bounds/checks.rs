@@ -97,20 +97,22 @@ impl Sink<'_> {
 
 /// A reproducer of a configuration: every f64 in Rust's round-trip form.
 pub fn describe(cfg: &PieceConfig, what: &str) -> String {
-    let q = cfg.pos_ab.rotation.quaternion();
-    let t = cfg.pos_ab.translation.vector;
     format!(
-        "{what}; family {}; a = {:?}; b = {:?}; pose quaternion (w, i, j, k) = ({:?}, {:?}, {:?}, {:?}), translation = ({:?}, {:?}, {:?})",
+        "{what}; family {}; a = {:?}; b = {:?}; {}",
         cfg.family.name(),
         cfg.a,
         cfg.b,
-        q.w,
-        q.i,
-        q.j,
-        q.k,
-        t.x,
-        t.y,
-        t.z
+        pose_text(&cfg.pos_ab)
+    )
+}
+
+/// B's pose in a reproducer: quaternion and translation in Rust's round-trip form.
+pub fn pose_text(pos: &Isometry3<f64>) -> String {
+    let q = pos.rotation.quaternion();
+    let t = pos.translation.vector;
+    format!(
+        "pose quaternion (w, i, j, k) = ({:?}, {:?}, {:?}, {:?}), translation = ({:?}, {:?}, {:?})",
+        q.w, q.i, q.j, q.k, t.x, t.y, t.z
     )
 }
 

@@ -349,23 +349,40 @@ pub(super) fn surface_point(rng: &mut SplitMix64, chain: &[ProfileArc]) -> Surfa
     }
 }
 
-/// A unit normal of the chain at `x`: at a joint, a random unit vector between the two
-/// pieces' normals (the normal cone of a kink); random sign.
-fn normal(rng: &mut SplitMix64, chain: &[ProfileArc], x: &SurfacePoint) -> Vector3<f64> {
-    let mut n = planar_normal(&chain[x.piece], x.s);
-    let neighbour = if x.s == 0.0 && x.piece > 0 {
+/// The planar normal of the neighbouring piece when `x` is a joint of the chain (a piece's
+/// start after another piece, or its end before one).
+pub(super) fn neighbour_normal(chain: &[ProfileArc], x: &SurfacePoint) -> Option<Vector2<f64>> {
+    if x.s == 0.0 && x.piece > 0 {
         Some(planar_normal(&chain[x.piece - 1], 1.0))
     } else if x.s == 1.0 && x.piece + 1 < chain.len() {
         Some(planar_normal(&chain[x.piece + 1], 0.0))
     } else {
         None
-    };
-    if let Some(m) = neighbour {
-        let w = rng.next_f64();
-        let blend = n * w + m * (1.0 - w);
-        if blend.norm() > 1e-3 {
-            n = blend.normalize();
-        }
+    }
+}
+
+/// A random unit vector between two unit normals of a joint (its normal cone), or `n` when
+/// they nearly cancel.
+pub(super) fn blend_normals(
+    rng: &mut SplitMix64,
+    n: Vector2<f64>,
+    m: Vector2<f64>,
+) -> Vector2<f64> {
+    let w = rng.next_f64();
+    let blend = n * w + m * (1.0 - w);
+    if blend.norm() > 1e-3 {
+        blend.normalize()
+    } else {
+        n
+    }
+}
+
+/// A unit normal of the chain at `x`: at a joint, a random unit vector between the two
+/// pieces' normals (the normal cone of a kink); random sign.
+fn normal(rng: &mut SplitMix64, chain: &[ProfileArc], x: &SurfacePoint) -> Vector3<f64> {
+    let mut n = planar_normal(&chain[x.piece], x.s);
+    if let Some(m) = neighbour_normal(chain, x) {
+        n = blend_normals(rng, n, m);
     }
     let n3 = lift_vector(n, x.theta);
     if rng.chance(0.5) {

@@ -15,9 +15,10 @@
 //! nothing else.
 
 use super::chain::{lift_vector, planar_normal, point, Pair, SurfacePoint};
+use super::checks::pose_text;
 use super::exact::pair_distance;
 use super::nearest::nearest_pairs;
-use super::pieces::{free_pose, gap, surface_point};
+use super::pieces::{blend_normals, free_pose, gap, neighbour_normal, surface_point};
 use super::report::Tally;
 use super::Bound;
 use crate::contact;
@@ -152,21 +153,11 @@ fn shape(rng: &mut SplitMix64, kind: Primitive, scale: f64) -> Shape {
 fn outward_normal(rng: &mut SplitMix64, shape: &Shape, x: &SurfacePoint) -> Vector3<f64> {
     let chain = &shape.pieces;
     let mut n = planar_normal(&chain[x.piece], x.s);
-    let neighbour = if x.s == 0.0 && x.piece > 0 {
-        Some(planar_normal(&chain[x.piece - 1], 1.0))
-    } else if x.s == 1.0 && x.piece + 1 < chain.len() {
-        Some(planar_normal(&chain[x.piece + 1], 0.0))
-    } else {
-        None
-    };
-    if let Some(m) = neighbour {
-        // Orient both before blending: a segment's left normal may point inwards.
+    if let Some(m) = neighbour_normal(chain, x) {
+        // Orient both alike before blending: a segment's left normal points into the solid
+        // where an arc's points out of it.
         let m = if m.dot(&n) < 0.0 { -m } else { m };
-        let w = rng.next_f64();
-        let blend = n * w + m * (1.0 - w);
-        if blend.norm() > 1e-3 {
-            n = blend.normalize();
-        }
+        n = blend_normals(rng, n, m);
     }
     let n3 = lift_vector(n, x.theta);
     let p = point(chain, x);
@@ -236,23 +227,15 @@ fn reference(cfg: &SolidConfig) -> f64 {
 }
 
 fn describe(cfg: &SolidConfig, what: &str) -> String {
-    let q = cfg.pos_ab.rotation.quaternion();
-    let t = cfg.pos_ab.translation.vector;
     format!(
-        "{what}; {} vs {}; a = {:?}; b = {:?}; eps {:e}, {:e}; pose quaternion (w, i, j, k) = ({:?}, {:?}, {:?}, {:?}), translation = ({:?}, {:?}, {:?})",
+        "{what}; {} vs {}; a = {:?}; b = {:?}; eps {:e}, {:e}; {}",
         cfg.a.kind.name(),
         cfg.b.kind.name(),
         cfg.a.pieces,
         cfg.b.pieces,
         cfg.a.solid.tree.eps,
         cfg.b.solid.tree.eps,
-        q.w,
-        q.i,
-        q.j,
-        q.k,
-        t.x,
-        t.y,
-        t.z
+        pose_text(&cfg.pos_ab)
     )
 }
 
