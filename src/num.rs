@@ -16,6 +16,12 @@ pub fn norm2(x: f64, y: f64) -> f64 {
     }
 }
 
+/// The 2-D cross product `a x b` (the z component of the 3-D one).
+#[inline]
+pub fn cross2(a: nalgebra::Vector2<f64>, b: nalgebra::Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
 #[cfg(test)]
 mod tests {
     use super::norm2;

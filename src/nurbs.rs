@@ -10,6 +10,7 @@
 use crate::limits::{
     check_coordinate, check_magnitude, RangeError, MAX_KNOT, MAX_WEIGHT_RATIO, MIN_KNOT_SPAN,
 };
+use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
 mod basis;
@@ -444,15 +445,15 @@ impl NurbsCurve {
     /// (rho, z) plane); NaN where the speed vanishes.
     pub fn curvature(&self, t: f64) -> f64 {
         let d = self.derivatives_up_to(t, 2);
-        cross(d[1], d[2]) / d[1].norm().powi(3)
+        cross2(d[1], d[2]) / d[1].norm().powi(3)
     }
 
     /// Derivative of the signed curvature with respect to the parameter.
     pub fn curvature_derivative(&self, t: f64) -> f64 {
         let d = self.derivatives(t);
         let speed_sq = d[1].norm_squared();
-        let n = cross(d[1], d[2]);
-        let n_prime = cross(d[1], d[3]);
+        let n = cross2(d[1], d[2]);
+        let n_prime = cross2(d[1], d[3]);
         (n_prime * speed_sq - 3.0 * n * d[1].dot(&d[2])) / speed_sq.powf(2.5)
     }
 
@@ -659,11 +660,6 @@ fn from_homogeneous(p: usize, knots: Vec<f64>, hom: &[[f64; 3]], rational: bool)
             .collect(),
         weights: rational.then(|| hom.iter().map(|h| h[2]).collect()),
     }
-}
-
-/// z-component of the 2-D cross product.
-pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! Planar circular arcs in the (rho, z) half-plane with signed curvature; `k = 0` is a segment
 //! (paper section 4.1: the arcs of a biarc, revolved into toroidal patches).
 
+use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
 /// Below this absolute sweep (radians) an arc is stored as an exact segment (`k = 0`).
@@ -61,11 +62,6 @@ fn perp(v: Vector2<f64>) -> Vector2<f64> {
     Vector2::new(-v.y, v.x)
 }
 
-/// 2-D cross product `a x b`.
-pub(crate) fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
 impl Arc {
     /// The arc that starts at `start` with unit tangent `tangent` and ends at `end`.
     ///
@@ -87,7 +83,7 @@ impl Arc {
         }
         let t = tangent / t_len;
         let e = chord / chord_len;
-        let theta = cross(e, t).atan2(e.dot(&t));
+        let theta = cross2(e, t).atan2(e.dot(&t));
         if theta.abs() >= std::f64::consts::PI * (1.0 - 1e-12) {
             return None;
         }
@@ -226,7 +222,7 @@ impl Arc {
             let c = self.center().unwrap_or(self.start);
             let d0 = self.start - c;
             let dp = p - c;
-            let rel = cross(d0, dp).atan2(d0.dot(&dp));
+            let rel = cross2(d0, dp).atan2(d0.dot(&dp));
             let rel = if self.sweep > 0.0 { rel } else { -rel };
             let rel = if rel < 0.0 {
                 rel + 2.0 * std::f64::consts::PI

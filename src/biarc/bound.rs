@@ -19,7 +19,7 @@
 
 use nalgebra::{Point2, Vector2};
 
-use super::arc::cross;
+use crate::num::cross2;
 
 /// Relative inflation of every lens width, covering the rounding of the few dozen floating-point
 /// operations in [`lens_width`] (each contributes at most one ulp, ~1.1e-16 relative).
@@ -40,8 +40,8 @@ pub fn lens_width(a: Point2<f64>, ta: Vector2<f64>, b: Point2<f64>, tb: Vector2<
         return 0.0;
     }
     // phi_a = angle(T_A) - angle(AB), phi_b = angle(AB) - angle(T_B)
-    let phi_a = cross(chord, ta).atan2(chord.dot(&ta));
-    let phi_b = cross(tb, chord).atan2(tb.dot(&chord));
+    let phi_a = cross2(chord, ta).atan2(chord.dot(&ta));
+    let phi_b = cross2(tb, chord).atan2(tb.dot(&chord));
     h * ((0.5 * phi_a).tan() - (0.5 * phi_b).tan()).abs()
 }
 

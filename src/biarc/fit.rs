@@ -18,9 +18,10 @@
 
 use nalgebra::{Point2, Vector2};
 
-use super::arc::{cross, Arc};
+use super::arc::Arc;
 use super::bound::bilens_bound;
 use super::BiarcError;
+use crate::num::cross2;
 
 /// A planar curve that can be evaluated with its first derivative.
 pub trait PlanarCurve {
@@ -116,7 +117,7 @@ impl FittedBiarc {
     pub fn joint_defect(&self) -> f64 {
         let t0 = self.arcs[0].end_tangent();
         let t1 = self.arcs[1].start_tangent;
-        cross(t0, t1).atan2(t0.dot(&t1)).abs()
+        cross2(t0, t1).atan2(t0.dot(&t1)).abs()
     }
 }
 
@@ -148,8 +149,8 @@ struct JCircle {
 impl JCircle {
     fn new(a: Point2<f64>, ta: Vector2<f64>, b: Point2<f64>, tb: Vector2<f64>) -> JCircle {
         let v = b - a;
-        let theta0 = cross(v, ta).atan2(v.dot(&ta));
-        let theta1 = cross(v, tb).atan2(v.dot(&tb));
+        let theta0 = cross2(v, ta).atan2(v.dot(&ta));
+        let theta1 = cross2(v, tb).atan2(v.dot(&tb));
         let (sin_w, cos_w) = (0.5 * (theta0 - theta1)).sin_cos();
         JCircle { a, b, sin_w, cos_w }
     }
@@ -158,7 +159,7 @@ impl JCircle {
     /// G1 defect).
     fn g_with_noise(&self, x: Point2<f64>) -> (f64, bool) {
         let (u, w) = (self.a - x, self.b - x);
-        let g = self.sin_w * u.dot(&w) + self.cos_w * cross(u, w);
+        let g = self.sin_w * u.dot(&w) + self.cos_w * cross2(u, w);
         (
             g,
             g.abs() <= G_NOISE_ULPS * f64::EPSILON * u.norm() * w.norm(),

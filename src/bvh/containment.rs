@@ -9,8 +9,9 @@
 //! profile too (the original curve stays within eps of the chain, so it cannot pass
 //! between the point and the chain).
 
-use super::patch::{cross2, ProfileArc};
+use super::patch::ProfileArc;
 use super::tree::QueryTree;
+use crate::num::cross2;
 use crate::profile::ProfileKind;
 use crate::tolerances::AXIS_NUDGE;
 use nalgebra::{Point2, Point3};

@@ -31,11 +31,6 @@ pub enum ProfileArc {
     },
 }
 
-/// 2-D cross product.
-pub(crate) fn cross2(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
 impl ProfileArc {
     /// Arc through `start` and `end` whose centre is `center` (counter-clockwise when `ccw`).
     pub fn arc_from_center(

@@ -7,9 +7,10 @@
 use super::convex::ConvexHullData;
 use super::hull::{HullRef, NodeHull, UpperHull};
 use super::offset_solid::{detect, OffsetSolid};
-use super::patch::{cross2, Patch, ProfileArc};
+use super::patch::{Patch, ProfileArc};
 use crate::biarc::Disk;
 use crate::biarc::{Arc as BiarcArc, BiarcTree};
+use crate::num::cross2;
 use crate::profile::ProfileKind;
 use nalgebra::{Point2, Vector2};
 

@@ -35,12 +35,13 @@
 
 use nalgebra::{Point2, Vector2};
 
-use super::arc::{cross, Arc};
+use super::arc::Arc;
 use super::bound::ulp_slack;
 use super::disk::Disk;
 use super::fit::CurveSample;
 use super::span::{SpanCurve, MAX_SPAN_DEGREE};
 use super::BiarcError;
+use crate::num::cross2;
 use crate::nurbs::Aabb2;
 use crate::profile::Profile;
 
@@ -622,7 +623,7 @@ fn reach(arc: &Arc, dir: Vector2<f64>) -> Option<f64> {
         return None;
     }
     let t = arc.start_tangent;
-    let mut d = cross(t, dir).atan2(t.dot(&dir));
+    let mut d = cross2(t, dir).atan2(t.dot(&dir));
     if arc.sweep < 0.0 {
         d = -d;
     }

@@ -4,10 +4,10 @@
 
 use super::piece_curve::PieceCurve;
 use super::*;
-use crate::biarc::arc::cross;
 use crate::biarc::fit::{fit_biarc, g1_tolerance, CurveSample, PlanarCurve};
 use crate::biarc::spiral::split_span;
 use crate::biarc::BiarcError;
+use crate::num::cross2;
 use crate::nurbs::Aabb2;
 use nalgebra::{Point2, Vector2};
 
@@ -82,7 +82,7 @@ impl BiarcTree {
         let (_, db) = cb.point_and_derivative(knot);
         let (na, nb) = (da.norm(), db.norm());
         if !(na > 0.0 && nb > 0.0)
-            || cross(da, db).abs() > MERGE_TANGENT_TOL * na * nb
+            || cross2(da, db).abs() > MERGE_TANGENT_TOL * na * nb
             || da.dot(&db) <= 0.0
         {
             return false;

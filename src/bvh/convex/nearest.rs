@@ -11,6 +11,7 @@
 //! by rounding; either is a point of the approximating surface.
 
 use crate::bvh::{ProfileArc, QueryTree};
+use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
 /// A piece of the chain with what its nearest point needs precomputed.
@@ -34,11 +35,6 @@ pub enum MeridianPiece {
         start: Point2<f64>,
         end: Point2<f64>,
     },
-}
-
-#[inline]
-fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
 }
 
 impl MeridianPiece {
@@ -94,7 +90,7 @@ impl MeridianPiece {
             } => {
                 let d = m - center;
                 let n2 = d.norm_squared();
-                let (after_from, before_to) = (cross(from, d) >= 0.0, cross(d, to) >= 0.0);
+                let (after_from, before_to) = (cross2(from, d) >= 0.0, cross2(d, to) >= 0.0);
                 let in_range = if wide {
                     after_from || before_to
                 } else {

@@ -19,6 +19,7 @@
 //! the tree's eps counts).
 
 use crate::bvh::ProfileArc;
+use crate::num::cross2;
 use nalgebra::{Point2, Point3, Vector2, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -45,14 +46,9 @@ impl SupportArc {
     /// lies in the arc's angle range.
     #[inline]
     fn support(&self, dir: Vector2<f64>, inv_norm: f64) -> Option<Point2<f64>> {
-        let in_range = cross(self.from, dir) >= 0.0 && cross(dir, self.to) >= 0.0;
+        let in_range = cross2(self.from, dir) >= 0.0 && cross2(dir, self.to) >= 0.0;
         in_range.then(|| self.center + dir * (self.radius * inv_norm))
     }
-}
-
-#[inline]
-fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
 }
 
 /// Candidate lists per direction bucket (module doc).
@@ -259,7 +255,7 @@ fn convex_hull(mut points: Vec<Point2<f64>>) -> Vec<Point2<f64>> {
     if points.len() < 3 {
         return points;
     }
-    let turn = |o: Point2<f64>, a: Point2<f64>, b: Point2<f64>| cross(a - o, b - o);
+    let turn = |o: Point2<f64>, a: Point2<f64>, b: Point2<f64>| cross2(a - o, b - o);
     let mut hull: Vec<Point2<f64>> = Vec::with_capacity(points.len() + 1);
     for pass in 0..2 {
         let start = hull.len();

@@ -7,7 +7,8 @@
 //! along the line of centres; for an arc and a segment it runs through the arc centre
 //! perpendicular to the segment; two segments have no isolated interior common normal.
 
-use crate::bvh::patch::{cross2, ProfileArc};
+use crate::bvh::patch::ProfileArc;
+use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
 /// One intersection point of two pieces, if they meet.
