@@ -106,10 +106,15 @@ pub struct Report {
     pub times: BTreeMap<(&'static str, u64), Vec<Duration>>,
     /// Thread CPU time of the oracle's checks (all threads).
     pub oracle_time: Duration,
+    /// The [`SLOWEST`] slowest searches: time, and the case as [`describe`] writes it.
+    pub slowest: Vec<(Duration, String)>,
     pub wall: Duration,
     /// Building the trees and oracle indexes (part of `wall`).
     pub build: Duration,
 }
+
+/// How many of the slowest searches the report names.
+pub const SLOWEST: usize = 5;
 
 /// Median, p90, p99 and largest of `v` in milliseconds (nearest rank).
 fn quantiles_ms(v: &[Duration]) -> [f64; 4] {
@@ -145,6 +150,9 @@ impl Report {
             s += &format!("  {family:<15} {outcome:<10} {n}\n");
         }
         s += &self.times_table();
+        for (time, case) in &self.slowest {
+            s += &format!("slow {:.3} ms: {case}\n", time.as_secs_f64() * 1e3);
+        }
         for f in self.failures.iter().take(20) {
             s += &format!("FAIL {f}\n");
         }
@@ -211,6 +219,8 @@ struct CaseResult {
     time: Duration,
     /// The checks' thread CPU time.
     oracle_time: Duration,
+    /// The case with the search's answer, as [`describe`] writes it.
+    description: String,
 }
 
 /// Runs case `i` and checks it.
@@ -226,7 +236,7 @@ fn run_case(
     let family = Family::ALL[i % Family::ALL.len()];
     let (sa, sb) = (&shapes[ia], &shapes[ib]);
     let case = random_motion(&mut rng, family, &sa.extent, &sb.extent);
-    let result = |outcome, queries, calls, time, oracle_time| CaseResult {
+    let result = |outcome, queries, calls, time, oracle_time, what: &str| CaseResult {
         family,
         eps: opts.eps[ie],
         outcome,
@@ -234,6 +244,7 @@ fn run_case(
         calls,
         time,
         oracle_time,
+        description: describe(i, sa, sb, opts.eps[ie], &case, what),
     };
     let fail = |what: String| {
         let msg = describe(i, sa, sb, opts.eps[ie], &case, &what);
@@ -252,6 +263,7 @@ fn run_case(
                 check::Calls::default(),
                 Duration::ZERO,
                 Duration::ZERO,
+                "motion rejected",
             );
         }
     };
@@ -264,7 +276,14 @@ fn run_case(
         Ok(r) => r,
         Err(e) => {
             fail(format!("error: {e}"));
-            return result("error", 0, check::Calls::default(), time, Duration::ZERO);
+            return result(
+                "error",
+                0,
+                check::Calls::default(),
+                time,
+                Duration::ZERO,
+                "query error",
+            );
         }
     };
     let scene = Scene {
@@ -303,7 +322,15 @@ fn run_case(
             r.t_upper
         ));
     }
-    result(r.outcome.name(), r.queries, calls, time, oracle_time)
+    let what = format!(
+        "{} [{}, {:?}], {} queries, {} certificates",
+        r.outcome.name(),
+        r.t_lower,
+        r.t_upper,
+        r.queries,
+        r.certificates
+    );
+    result(r.outcome.name(), r.queries, calls, time, oracle_time, &what)
 }
 
 /// The shapes of the campaign: every built-in model and [`MORPH_FRAMES`].
@@ -362,6 +389,9 @@ pub fn run(opts: &Options) -> Result<Report, String> {
                         .entry((c.family.name(), c.eps.to_bits()))
                         .or_default()
                         .push(c.time);
+                    r.slowest.push((c.time, c.description));
+                    r.slowest.sort_by_key(|s| std::cmp::Reverse(s.0));
+                    r.slowest.truncate(SLOWEST);
                 }
             });
         }
