@@ -88,7 +88,7 @@ long() {  # long NAME SUBDIR COMMAND...: a step --shard splits; its --out is $ou
 # and both eps, with 20 poses each (two blocks: every pose kind) instead of 200.
 if [ ${#paper[@]} -eq 0 ]; then
     fcl_poses=(--poses 40 --poses-1e-5 20); query_poses=(--poses 100); cross=(--poses 100); occt=(--occt-poses 20)
-    toi_motions=(--motions 1); tails_poses=(--poses 1000); peers_poses=(--poses 20 --parry-poses 4)
+    toi_motions=(--motions 3); tails_poses=(--poses 1000); peers_poses=(--poses 20 --parry-poses 4)
     motion_frames=(--frames 60 --frames-1e-5 30); deforming_frames=(--frames 20 --frames-1e-5 4)
     pareto_poses=(--poses 60); bvh_frames=(--morph-frames 10); stability_seeds=(--seeds 3)
 else

@@ -19,6 +19,25 @@
 //! keeps finding certified contacts. The first contact time lies in `[t_lower, t_upper]`. When no
 //! probe certifies a contact (grazing at the query's accuracy, or a budget ran out) the
 //! answer is [`ToiOutcome::Undecided`]: apart before `t_lower`, nothing certified after.
+//!
+//! **How wide the interval is** (nothing above depends on it; it is what the trees allow).
+//! Let `e_A`, `e_B` be the trees' bounds and `g(t)` the distance of the approximating
+//! surfaces. The trees describe every pair of solids whose boundaries lie within `e_A`, `e_B`
+//! of the approximating ones, so the true distance may be anything in `[g - e_A - e_B,
+//! g + e_A + e_B]`: apart is certifiable only while `g > D + e_A + e_B`, contact only once
+//! `g <= D - e_A - e_B` (for `D = 0`: the approximating regions overlap by more than
+//! `e_A + e_B`, [`super::contact`]). Between the two, a band `2 (e_A + e_B)` wide in `g`,
+//! no search from these trees can certify either; if `g` closes at speed `c` the interval
+//! of *any* certified search is `2 (e_A + e_B) / c` wide in the worst case (leaves at their
+//! bound), which is `2 eps / c` only when each tree's bound is `eps / 2`. This search adds
+//! to the band: the advancement stops while the query's lower bound is within
+//! `(e_A + e_B) / 4` of `D` ([`EARLY_STALL_DIVISOR`]) and its queries near `D` are asked
+//! for half the remaining gap ([`GAP_TOLERANCE_SHARE`]), so `t_lower` is where the distance
+//! is at most `D + (e_A + e_B) / 4` plus the query's own interval; the carried witnesses
+//! certify `t_upper` once a point of their segment clears both eps, later than the first
+//! overlap when the witness segment is not along the deepest direction; the bisection
+//! stops at the time tolerance. `figures/toi_bench.md` measures the width in units of
+//! `2 eps / closing speed`.
 
 use super::contact::{CertifiedContact, ContactTest, Witness};
 use super::motion::{Motion, MotionError, MOTION_ROUNDING_REL};
@@ -40,6 +59,15 @@ pub const STEP_SHRINK_REL: f64 = 1e-12;
 /// geometrically towards the time tolerance, more of them the coarser the trees. When no
 /// contact is certified the advancement goes on as before.
 pub const EARLY_STALL_DIVISOR: f64 = 4.0;
+
+/// Near a contact the advancement asks each query for an interval no wider than this share
+/// of the previous query's upper bound minus `D` (when that is narrower than the caller's
+/// tolerance): a lower bound within half the remaining gap keeps each step at least half the
+/// step the exact distance would allow, where a lower bound a whole tree eps below the
+/// distance makes the steps shrink towards nothing while the solids are still that far
+/// apart (grazing passes, and the last steps before a contact). Only the work per query
+/// changes; every step still uses the query's certified lower bound.
+pub const GAP_TOLERANCE_SHARE: f64 = 0.5;
 
 /// Default time tolerance: the advancement stalls below steps of this length, and the
 /// bisection stops when `t_upper - t_lower` is below it.
@@ -183,14 +211,22 @@ struct Search<'a> {
 }
 
 impl Search<'_> {
-    fn probe(&mut self, t: f64, tight: bool) -> Result<Probe, ToiError> {
+    /// A query at `t`: at tolerance 0 when `tight`, else at the caller's tolerance narrowed
+    /// to half of `gap` (an estimate of the distance above `D`, see [`GAP_TOLERANCE_SHARE`]).
+    fn probe(&mut self, t: f64, tight: bool, gap: f64) -> Result<Probe, ToiError> {
         let pa = self.ma.pose_at(t);
         let pb = self.mb.pose_at(t);
         let a = self.a.with_pose(pa);
         let b = self.b.with_pose(pb);
         let mut q = self.opts.query;
+        let asked = q
+            .tolerance
+            .width(self.a.tree.target_eps, self.b.tree.target_eps);
+        let near = GAP_TOLERANCE_SHARE * gap.max(0.0);
         if tight {
             q.tolerance = Tolerance::Absolute(0.0);
+        } else if near < asked {
+            q.tolerance = Tolerance::Absolute(near);
         }
         let d = try_distance_cached(&a, &b, &q, &mut self.cache)
             .map_err(|source| ToiError::Query { t, source })?;
@@ -292,11 +328,14 @@ pub fn time_of_impact(
     let mut early_tried = false;
     let mut t = 0.0_f64;
     let mut witness: Witness;
+    // The last query's upper bound minus D (the distance above D is at most this there).
+    let mut gap = f64::INFINITY;
     loop {
         if !s.budget_left() {
             return Ok(answer(&s, ToiOutcome::Undecided, t, None, None, s.queries));
         }
-        let mut p = s.probe(t, false)?;
+        let mut p = s.probe(t, false, gap)?;
+        gap = p.upper - dist;
         if p.upper <= dist {
             return Ok(contact_at(&s, t, p));
         }
@@ -310,7 +349,8 @@ pub fn time_of_impact(
             }
         };
         if (p.lower <= dist || step(&p) < opts.time_tolerance) && s.budget_left() {
-            p = s.probe(t, true)?;
+            p = s.probe(t, true, gap)?;
+            gap = p.upper - dist;
             if p.upper <= dist {
                 return Ok(contact_at(&s, t, p));
             }
@@ -329,7 +369,8 @@ pub fn time_of_impact(
                     // shrink geometrically. One query at tolerance 0 (its lower bound is
                     // close to the distance), its step, then the carried certificate.
                     early_tried = true;
-                    let pt = s.probe(t, true)?;
+                    let pt = s.probe(t, true, gap)?;
+                    gap = pt.upper - dist;
                     if pt.upper <= dist {
                         return Ok(contact_at(&s, t, pt));
                     }
@@ -398,7 +439,7 @@ pub fn time_of_impact(
     }
     // Then distance queries at tolerance 0 (their overlap certificates search both solids).
     let contact_probe = |s: &mut Search, at: f64| -> Result<Option<Distance>, ToiError> {
-        let p = s.probe(at, true)?;
+        let p = s.probe(at, true, 0.0)?;
         Ok((p.upper <= dist).then_some(p.distance))
     };
     let mut h = opts.time_tolerance;

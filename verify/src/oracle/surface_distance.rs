@@ -59,6 +59,9 @@ use std::collections::BinaryHeap;
 pub const ARC_SAFETY: f64 = 1.02;
 /// Largest turning angle (radians) between the two chords of an initial parameter interval.
 pub const MAX_TURN: f64 = 0.35;
+/// In quick mode with a goal, cells are not split below this radius (relative to the source
+/// profile's size) to prove the surfaces apart; the local minimisations decide instead.
+pub const QUICK_GOAL_MIN_CELL_REL: f64 = 1e-4;
 
 /// How hard the oracle works.
 #[derive(Debug, Clone, Copy)]
@@ -79,6 +82,13 @@ pub struct OracleOptions {
     /// only up to the query's upper bound plus the slack): the branch and bound stops once
     /// every cell's bound reaches it, or once the realised upper estimate is at or below it
     /// (then no lower estimate can exceed it). Infinite: run to `upper - tau`.
+    ///
+    /// Without the branch and bound (quick mode) the goal is the level the realised upper
+    /// estimate is compared with (a time-of-impact check asks whether some pair is closer
+    /// than it, or the solids overlap): when the grid's cells, split best-first up to the
+    /// grid's own size, prove the surfaces farther apart than `max(goal, 0)`, no local
+    /// minimisation can realise a pair below the goal and the boundaries do not meet, so
+    /// the minimisations are skipped; the grids' inside census (which sees nesting) stands.
     pub goal: f64,
 }
 
@@ -580,14 +590,19 @@ impl<'a> Dir<'a> {
         out
     }
 
-    /// One direction's initial grid (evaluated) and local minimisations from its best,
-    /// mutually distant cells.
+    /// One direction's initial grid, evaluated (with the inside census).
     fn grid(&self, opts: &OracleOptions, st: &mut State) -> Vec<Cell> {
         let l0 = opts.initial_rel * self.src.geom.size;
         let mut cells = self.initial_cells(l0);
         for c in cells.iter_mut() {
             self.eval_cell(c, st, true, None);
         }
+        cells
+    }
+
+    /// Local minimisations from the best, mutually distant cells of the evaluated grid.
+    fn seed(&self, cells: &[Cell], opts: &OracleOptions, st: &mut State) {
+        let l0 = opts.initial_rel * self.src.geom.size;
         // Seeds: best centres, mutually at least 2 l0 apart (in the source frame).
         let mut order: Vec<usize> = (0..cells.len()).collect();
         order.sort_by(|&a, &b| cells[a].f.total_cmp(&cells[b].f));
@@ -610,7 +625,65 @@ impl<'a> Dir<'a> {
                 st.best = Some(p);
             }
         }
-        cells
+    }
+
+    /// Whether every point of the source surface is farther than `level` from the target
+    /// surface: a best-first split of the grid's cells whose bound `lb` is at most `level`,
+    /// until none is left (`true`) or `budget` cells were evaluated or a cell cannot shrink
+    /// further (`false`). Without the census: the grid's census already ran.
+    fn clears(&self, cells: &[Cell], level: f64, budget: usize, st: &mut State) -> bool {
+        let mut open: BinaryHeap<HeapKey> = BinaryHeap::new();
+        let mut pool: Vec<Cell> = Vec::new();
+        for c in cells.iter().filter(|c| c.lb <= level) {
+            pool.push(*c);
+            open.push(HeapKey(c.lb, pool.len() - 1));
+        }
+        let mut evals = 0;
+        while let Some(HeapKey(_, i)) = open.pop() {
+            let c = pool[i];
+            if evals >= budget || c.r <= QUICK_GOAL_MIN_CELL_REL * self.src.geom.size {
+                return false;
+            }
+            for mut kid in self.split(&c) {
+                self.eval_cell(&mut kid, st, false, Some((c.f, c.r)));
+                evals += 1;
+                if kid.lb <= level {
+                    pool.push(kid);
+                    open.push(HeapKey(kid.lb, pool.len() - 1));
+                }
+            }
+        }
+        true
+    }
+
+    /// The realised pair at the centre of the grid cell nearest the target.
+    fn grid_pair(&self, cells: &[Cell]) -> Option<Pair> {
+        let c = cells.iter().min_by(|a, b| a.f.total_cmp(&b.f))?;
+        Some(
+            self.f_grad(c.k as usize, 0.5 * (c.ta + c.tb), 0.5 * (c.th0 + c.th1))
+                .0,
+        )
+    }
+
+    /// The two halves of a cell, split in the dimension contributing more to its radius.
+    fn split(&self, c: &Cell) -> [Cell; 2] {
+        let th_part = 2.0 * c.rho.abs() * ((c.th1 - c.th0) / 4.0).sin();
+        let k = c.k as usize;
+        if th_part > c.r_param {
+            let thm = 0.5 * (c.th0 + c.th1);
+            [
+                self.make_cell(k, c.ta, c.tb, c.th0, thm, c.r_param),
+                self.make_cell(k, c.ta, c.tb, thm, c.th1, c.r_param),
+            ]
+        } else {
+            let tm = 0.5 * (c.ta + c.tb);
+            let (r1, _) = self.r_param(k, c.ta, tm);
+            let (r2, _) = self.r_param(k, tm, c.tb);
+            [
+                self.make_cell(k, c.ta, tm, c.th0, c.th1, r1),
+                self.make_cell(k, tm, c.tb, c.th0, c.th1, r2),
+            ]
+        }
     }
 
     /// Branch and bound from the evaluated grid `cells`; returns the lower estimate.
@@ -653,23 +726,8 @@ impl<'a> Dir<'a> {
                 leaf_min = leaf_min.min(lb);
                 continue;
             }
-            let th_part = 2.0 * c.rho.abs() * ((c.th1 - c.th0) / 4.0).sin();
             let k = c.k as usize;
-            let mut kids = if th_part > c.r_param {
-                let thm = 0.5 * (c.th0 + c.th1);
-                [
-                    self.make_cell(k, c.ta, c.tb, c.th0, thm, c.r_param),
-                    self.make_cell(k, c.ta, c.tb, thm, c.th1, c.r_param),
-                ]
-            } else {
-                let tm = 0.5 * (c.ta + c.tb);
-                let (r1, _) = self.r_param(k, c.ta, tm);
-                let (r2, _) = self.r_param(k, tm, c.tb);
-                [
-                    self.make_cell(k, c.ta, tm, c.th0, c.th1, r1),
-                    self.make_cell(k, tm, c.tb, c.th0, c.th1, r2),
-                ]
-            };
+            let mut kids = self.split(&c);
             for kid in kids.iter_mut() {
                 self.eval_cell(kid, st, false, Some((c.f, c.r)));
                 evals += 1;
@@ -750,11 +808,32 @@ pub fn surface_distance(
         y: pos_ab * p.x,
         x: pos_ab * p.y,
     };
+    // Both grids first (the directions' states are separate, so this order gives the same
+    // results as grid, seeds, grid, seeds), then, in quick mode with a goal, the test that
+    // makes the local minimisations pointless.
     let mut st_ab = new_state();
     let cells_ab = ab.grid(opts, &mut st_ab);
     let mut st_ba = new_state();
-    st_ba.best = st_ab.best.map(to_ba);
     let cells_ba = ba.grid(opts, &mut st_ba);
+    let cleared = !opts.bound && opts.goal.is_finite() && {
+        let level = opts.goal.max(0.0);
+        if cells_ab.len() <= cells_ba.len() {
+            ab.clears(&cells_ab, level, cells_ab.len(), &mut st_ab)
+        } else {
+            ba.clears(&cells_ba, level, cells_ba.len(), &mut st_ba)
+        }
+    };
+    if cleared {
+        // Every realised pair is farther apart than the goal and the boundaries do not
+        // meet: one realised pair stands for the upper estimate; the grids' census stands.
+        st_ab.best = ab.grid_pair(&cells_ab);
+    } else {
+        ab.seed(&cells_ab, opts, &mut st_ab);
+    }
+    st_ba.best = st_ab.best.map(to_ba);
+    if !cleared {
+        ba.seed(&cells_ba, opts, &mut st_ba);
+    }
     let mut budget_hit = false;
     // Branch and bound in one direction (both give lower bounds of the same surface
     // distance): the one with the smaller grid.

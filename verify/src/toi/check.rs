@@ -13,9 +13,20 @@
 //! `tol` ([`ORACLE_TOL_REL`]) is the oracle's own error: its lower estimate rests on two
 //! estimates (sagitta and arc length, taken with factors of safety) and its inside census on
 //! a margin of `1e-13` of the scene's scale; both far below it.
+//!
+//! **What decides a check sooner, without deciding it differently.** Before `t_lower` the
+//! question is only whether the solids come within `D - tol` or overlap. (1) When the
+//! oracle's own bounding spheres of the two solids ([`bounding_sphere`]: the profile's box,
+//! which contains the curve, revolved) are more than `D + tol` apart, neither can happen and
+//! the oracle is not called. (2) Otherwise the oracle gets the goal `D - tol`
+//! ([`OracleOptions::goal`]): when its grid's cell bounds prove the surfaces farther apart
+//! than that (and than 0), its local minimisations could not realise a closer pair and are
+//! skipped; its inside census, which sees nesting, runs as before. At `t_upper` the question
+//! is whether the lower estimate exceeds `D + tol`, the branch and bound's goal: it stops
+//! once that is decided either way.
 
 use crate::oracle::{surface_distance, OracleOptions, OracleResult, PlanarIndex};
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Point3};
 
 /// Allowed error of the oracle relative to the scene's scale (`1 + |translations| +
 /// sizes`): 1e4 times the inside census's margin, and far below every eps of the campaign
@@ -37,6 +48,39 @@ pub fn pose_at(p0: &Isometry3<f64>, p1: &Isometry3<f64>, t: f64) -> Isometry3<f6
     Isometry3::from_parts(tr.into(), r)
 }
 
+/// A sphere containing the solid of `index` in its own frame: the profile's box (the
+/// polyline's box grown by its sagitta bound, which contains the curve, and so the region the
+/// curve and the axis enclose), revolved about the z axis. Centre on the axis.
+pub fn bounding_sphere(index: &PlanarIndex) -> (Point3<f64>, f64) {
+    let (lo, hi) = (index.geom.min, index.geom.max);
+    let rho = lo[0].abs().max(hi[0].abs());
+    let half = 0.5 * (hi[1] - lo[1]);
+    (
+        Point3::new(0.0, 0.0, 0.5 * (lo[1] + hi[1])),
+        rho.hypot(half),
+    )
+}
+
+/// Oracle calls a check made, and times it decided by the bounding spheres alone.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Calls {
+    pub oracle: usize,
+    pub spheres: usize,
+    /// Oracle calls whose grid proved the solids apart (no local minimisation ran).
+    pub grid: usize,
+}
+
+/// What decided one sampled time of [`Scene::breach_apart`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Decided {
+    /// The bounding spheres alone (no oracle call).
+    Spheres,
+    /// The oracle's grid (its cell bounds cleared the goal; no local minimisation).
+    Grid,
+    /// The oracle with its local minimisations.
+    Oracle,
+}
+
 /// One violation of a check.
 #[derive(Debug, Clone)]
 pub struct Breach {
@@ -56,19 +100,32 @@ pub struct Scene<'a> {
 }
 
 impl Scene<'_> {
-    fn oracle(&self, t: f64, opts: &OracleOptions) -> (OracleResult, f64) {
+    /// The poses at `t`, the relative pose of B in A's frame, and `tol`.
+    fn at(&self, t: f64) -> (Isometry3<f64>, Isometry3<f64>, f64) {
         let pa = pose_at(&self.pose_a[0], &self.pose_a[1], t);
         let pb = pose_at(&self.pose_b[0], &self.pose_b[1], t);
-        let pos_ab = pa.inverse() * pb;
         let scale = 1.0
             + pa.translation.vector.norm()
             + pb.translation.vector.norm()
             + self.a.geom.size
             + self.b.geom.size;
-        (
-            surface_distance(self.a, self.b, &pos_ab, opts),
-            scale * ORACLE_TOL_REL,
-        )
+        (pa, pb, scale * ORACLE_TOL_REL)
+    }
+
+    fn oracle(
+        &self,
+        pa: &Isometry3<f64>,
+        pb: &Isometry3<f64>,
+        opts: &OracleOptions,
+    ) -> OracleResult {
+        surface_distance(self.a, self.b, &(pa.inverse() * pb), opts)
+    }
+
+    /// Whether the bounding spheres at these poses are more than `gap` apart.
+    fn spheres_apart(&self, pa: &Isometry3<f64>, pb: &Isometry3<f64>, gap: f64) -> bool {
+        let (ca, ra) = bounding_sphere(self.a);
+        let (cb, rb) = bounding_sphere(self.b);
+        (pa * ca - pb * cb).norm() - ra - rb > gap
     }
 
     /// The sampled times before `t_lower` (with `t_lower` itself when `inclusive`).
@@ -86,33 +143,73 @@ impl Scene<'_> {
         ts
     }
 
-    /// Check "apart before t_lower"; returns the oracle calls made.
+    /// Check "apart before t_lower" (see the module doc for what decides it).
     pub fn check_apart(
         &self,
         t_lower: f64,
         inclusive: bool,
         d: f64,
         out: &mut Vec<Breach>,
-    ) -> usize {
-        let ts = Self::times_before(t_lower, inclusive);
-        for &t in &ts {
-            let (r, tol) = self.oracle(t, &OracleOptions::quick());
-            if r.overlap() || r.upper < d - tol {
-                out.push(Breach {
-                    what: "within D before t_lower",
-                    t,
-                    oracle_lower: r.solid_lower(),
-                    oracle_upper: r.solid_upper(),
-                    overlap: r.overlap(),
-                });
+    ) -> Calls {
+        let mut calls = Calls::default();
+        for t in Self::times_before(t_lower, inclusive) {
+            let (breach, decided) = self.breach_apart(t, d);
+            match decided {
+                Decided::Spheres => calls.spheres += 1,
+                Decided::Grid => {
+                    calls.oracle += 1;
+                    calls.grid += 1;
+                }
+                Decided::Oracle => calls.oracle += 1,
             }
+            out.extend(breach);
         }
-        ts.len()
+        calls
+    }
+
+    /// Whether the solids come within `D - tol` or overlap at `t` (a breach of "apart"),
+    /// and what decided it.
+    pub fn breach_apart(&self, t: f64, d: f64) -> (Option<Breach>, Decided) {
+        let (pa, pb, tol) = self.at(t);
+        if self.spheres_apart(&pa, &pb, d + tol) {
+            return (None, Decided::Spheres);
+        }
+        let opts = OracleOptions {
+            goal: d - tol,
+            ..OracleOptions::quick()
+        };
+        let r = self.oracle(&pa, &pb, &opts);
+        let breach = (r.overlap() || r.upper < d - tol).then(|| Breach {
+            what: "within D before t_lower",
+            t,
+            oracle_lower: r.solid_lower(),
+            oracle_upper: r.solid_upper(),
+            overlap: r.overlap(),
+        });
+        let decided = if r.refinements == 0 {
+            Decided::Grid
+        } else {
+            Decided::Oracle
+        };
+        (breach, decided)
+    }
+
+    /// The same question asked of the quick oracle without a goal or the spheres (as the
+    /// check was first written): for tests that the shortcuts decide it the same way.
+    pub fn breach_apart_unaided(&self, t: f64, d: f64) -> bool {
+        let (pa, pb, tol) = self.at(t);
+        let r = self.oracle(&pa, &pb, &OracleOptions::quick());
+        r.overlap() || r.upper < d - tol
     }
 
     /// Check "within D at t_upper".
     pub fn check_contact(&self, t_upper: f64, d: f64, out: &mut Vec<Breach>) {
-        let (r, tol) = self.oracle(t_upper, &OracleOptions::full());
+        let (pa, pb, tol) = self.at(t_upper);
+        let opts = OracleOptions {
+            goal: d + tol,
+            ..OracleOptions::full()
+        };
+        let r = self.oracle(&pa, &pb, &opts);
         if r.solid_lower() > d + tol {
             out.push(Breach {
                 what: "apart at t_upper",

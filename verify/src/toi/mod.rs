@@ -17,8 +17,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// Tree eps the campaign draws from by default.
-pub const DEFAULT_EPS: [f64; 2] = [1e-3, 1e-4];
+/// Tree eps the campaign draws from by default: the three of the time-of-impact targets
+/// (docs/verification.md, section 7).
+pub const DEFAULT_EPS: [f64; 3] = [1e-2, 1e-3, 1e-4];
 /// Frames of M_t in the pool.
 pub const MORPH_FRAMES: [&str; 4] = ["morph@0", "morph@0.35", "morph@0.7", "morph@1"];
 
@@ -63,6 +64,30 @@ fn build_shape(name: &str, eps: &[f64]) -> Result<Shape, String> {
     })
 }
 
+/// CPU time of the calling thread (`CLOCK_THREAD_CPUTIME_ID`): a search's own time, which
+/// other processes on the cores do not inflate. `None` when the clock is unavailable.
+fn thread_cpu() -> Option<Duration> {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid timespec the call writes to; the clock id is a constant.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    (rc == 0).then(|| Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32))
+}
+
+/// Runs `f`, returning its result and the calling thread's CPU time it took (the wall time
+/// when the thread clock is unavailable).
+fn cpu_timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
+    let (wall, cpu) = (Instant::now(), thread_cpu());
+    let r = f();
+    let time = match (cpu, thread_cpu()) {
+        (Some(a), Some(b)) => b.saturating_sub(a),
+        _ => wall.elapsed(),
+    };
+    (r, time)
+}
+
 /// Outcome counts and failures of a campaign.
 #[derive(Debug, Default)]
 pub struct Report {
@@ -70,31 +95,92 @@ pub struct Report {
     pub outcomes: BTreeMap<(&'static str, &'static str), usize>,
     pub queries: usize,
     pub oracle_calls: usize,
+    /// Sampled times decided by the oracle's bounding spheres alone ([`check::Calls`]).
+    pub sphere_decided: usize,
+    /// Oracle calls decided by the oracle's grid (no local minimisation).
+    pub grid_decided: usize,
     pub failures: Vec<String>,
+    /// Sum of the searches' thread CPU times.
     pub toi_time: Duration,
+    /// Each search's thread CPU time by (family, eps).
+    pub times: BTreeMap<(&'static str, u64), Vec<Duration>>,
+    /// Thread CPU time of the oracle's checks (all threads).
+    pub oracle_time: Duration,
+    /// The [`SLOWEST`] slowest searches: time, and the case as [`describe`] writes it.
+    pub slowest: Vec<(Duration, String)>,
     pub wall: Duration,
     /// Building the trees and oracle indexes (part of `wall`).
     pub build: Duration,
 }
 
+/// How many of the slowest searches the report names.
+pub const SLOWEST: usize = 5;
+
+/// Median, p90, p99 and largest of `v` in milliseconds (nearest rank).
+fn quantiles_ms(v: &[Duration]) -> [f64; 4] {
+    let mut ms: Vec<f64> = v.iter().map(|d| d.as_secs_f64() * 1e3).collect();
+    ms.sort_by(f64::total_cmp);
+    let at = |q: f64| {
+        if ms.is_empty() {
+            f64::NAN
+        } else {
+            ms[((q * ms.len() as f64).ceil() as usize).clamp(1, ms.len()) - 1]
+        }
+    };
+    [at(0.5), at(0.9), at(0.99), at(1.0)]
+}
+
 impl Report {
     pub fn summary(&self) -> String {
         let mut s = format!(
-            "verify toi: {} motions, {} failures; {} distance queries ({:.1} per motion, {:.3} s in the searches), {} oracle calls, {:.1} s wall ({:.1} s building the shapes)\n",
+            "verify toi: {} motions, {} failures; {} distance queries ({:.1} per motion, {:.3} s CPU in the searches), {} oracle calls ({:.1} s CPU; {} decided by the oracle's grid) and {} sampled times decided by bounding spheres, {:.1} s wall ({:.1} s building the shapes)\n",
             self.cases,
             self.failures.len(),
             self.queries,
             self.queries as f64 / self.cases.max(1) as f64,
             self.toi_time.as_secs_f64(),
             self.oracle_calls,
+            self.oracle_time.as_secs_f64(),
+            self.grid_decided,
+            self.sphere_decided,
             self.wall.as_secs_f64(),
             self.build.as_secs_f64()
         );
         for ((family, outcome), n) in &self.outcomes {
             s += &format!("  {family:<15} {outcome:<10} {n}\n");
         }
+        s += &self.times_table();
+        for (time, case) in &self.slowest {
+            s += &format!("slow {:.3} ms: {case}\n", time.as_secs_f64() * 1e3);
+        }
         for f in self.failures.iter().take(20) {
             s += &format!("FAIL {f}\n");
+        }
+        s
+    }
+
+    /// Search times (thread CPU, ms) per eps over all families, then per family and eps.
+    pub fn times_table(&self) -> String {
+        let mut s = String::from(
+            "search time, thread CPU ms:\n  family          eps      searches  median     p90      p99      max\n",
+        );
+        let mut by_eps: BTreeMap<u64, Vec<Duration>> = BTreeMap::new();
+        for ((_, e), v) in &self.times {
+            by_eps.entry(*e).or_default().extend(v);
+        }
+        let row = |name: &str, e: u64, v: &[Duration]| {
+            let [m, p90, p99, max] = quantiles_ms(v);
+            format!(
+                "  {name:<15} {:<8.0e} {:>8}  {m:<8.3} {p90:<8.3} {p99:<8.3} {max:.3}\n",
+                f64::from_bits(e),
+                v.len()
+            )
+        };
+        for (e, v) in &by_eps {
+            s += &row("all", *e, v);
+        }
+        for ((family, e), v) in &self.times {
+            s += &row(family, *e, v);
         }
         s
     }
@@ -122,19 +208,44 @@ fn describe(i: usize, sa: &Shape, sb: &Shape, eps: f64, case: &MotionCase, what:
     )
 }
 
-/// Runs case `i` and checks it; `(family, outcome, queries, oracle calls, time)`.
+/// What one case did.
+struct CaseResult {
+    family: Family,
+    eps: f64,
+    outcome: &'static str,
+    queries: usize,
+    calls: check::Calls,
+    /// The search's thread CPU time.
+    time: Duration,
+    /// The checks' thread CPU time.
+    oracle_time: Duration,
+    /// The case with the search's answer, as [`describe`] writes it.
+    description: String,
+}
+
+/// Runs case `i` and checks it.
 fn run_case(
     i: usize,
     opts: &Options,
     shapes: &[Shape],
     failures: &Mutex<Vec<String>>,
-) -> (Family, &'static str, usize, usize, Duration) {
+) -> CaseResult {
     let mut rng = SplitMix64(opts.seed ^ 0x7011_0032).fork(i as u64);
     let (ia, ib) = (rng.int(0, shapes.len() - 1), rng.int(0, shapes.len() - 1));
     let ie = rng.int(0, opts.eps.len() - 1);
     let family = Family::ALL[i % Family::ALL.len()];
     let (sa, sb) = (&shapes[ia], &shapes[ib]);
     let case = random_motion(&mut rng, family, &sa.extent, &sb.extent);
+    let result = |outcome, queries, calls, time, oracle_time, what: &str| CaseResult {
+        family,
+        eps: opts.eps[ie],
+        outcome,
+        queries,
+        calls,
+        time,
+        oracle_time,
+        description: describe(i, sa, sb, opts.eps[ie], &case, what),
+    };
     let fail = |what: String| {
         let msg = describe(i, sa, sb, opts.eps[ie], &case, &what);
         failures.lock().unwrap_or_else(|e| e.into_inner()).push(msg);
@@ -146,21 +257,33 @@ fn run_case(
         (Ok(a), Ok(b)) => (a, b),
         (Err(e), _) | (_, Err(e)) => {
             fail(format!("motion rejected: {e}"));
-            return (family, "error", 0, 0, Duration::ZERO);
+            return result(
+                "error",
+                0,
+                check::Calls::default(),
+                Duration::ZERO,
+                Duration::ZERO,
+                "motion rejected",
+            );
         }
     };
     let topts = ToiOptions {
         contact_distance: case.contact_distance,
         ..ToiOptions::default()
     };
-    let started = Instant::now();
-    let r = time_of_impact(&sa.solids[ie], &ma, &sb.solids[ie], &mb, &topts);
-    let time = started.elapsed();
+    let (r, time) = cpu_timed(|| time_of_impact(&sa.solids[ie], &ma, &sb.solids[ie], &mb, &topts));
     let r = match r {
         Ok(r) => r,
         Err(e) => {
             fail(format!("error: {e}"));
-            return (family, "error", 0, 0, time);
+            return result(
+                "error",
+                0,
+                check::Calls::default(),
+                time,
+                Duration::ZERO,
+                "query error",
+            );
         }
     };
     let scene = Scene {
@@ -171,17 +294,20 @@ fn run_case(
     };
     let mut breaches: Vec<Breach> = Vec::new();
     let d = case.contact_distance;
-    let mut calls = match r.outcome {
-        ToiOutcome::Apart => scene.check_apart(1.0, true, d, &mut breaches),
-        _ => scene.check_apart(r.t_lower, false, d, &mut breaches),
-    };
-    if let (ToiOutcome::Contact, Some(tu)) = (r.outcome, r.t_upper) {
-        if tu < r.t_lower {
-            fail(format!("t_upper {tu} < t_lower {}", r.t_lower));
+    let (calls, oracle_time) = cpu_timed(|| {
+        let mut calls = match r.outcome {
+            ToiOutcome::Apart => scene.check_apart(1.0, true, d, &mut breaches),
+            _ => scene.check_apart(r.t_lower, false, d, &mut breaches),
+        };
+        if let (ToiOutcome::Contact, Some(tu)) = (r.outcome, r.t_upper) {
+            if tu < r.t_lower {
+                fail(format!("t_upper {tu} < t_lower {}", r.t_lower));
+            }
+            scene.check_contact(tu, d, &mut breaches);
+            calls.oracle += 1;
         }
-        scene.check_contact(tu, d, &mut breaches);
-        calls += 1;
-    }
+        calls
+    });
     let n = breaches.len();
     if let Some(b) = breaches.first() {
         fail(format!(
@@ -196,7 +322,15 @@ fn run_case(
             r.t_upper
         ));
     }
-    (family, r.outcome.name(), r.queries, calls, time)
+    let what = format!(
+        "{} [{}, {:?}], {} queries, {} certificates",
+        r.outcome.name(),
+        r.t_lower,
+        r.t_upper,
+        r.queries,
+        r.certificates
+    );
+    result(r.outcome.name(), r.queries, calls, time, oracle_time, &what)
 }
 
 /// The shapes of the campaign: every built-in model and [`MORPH_FRAMES`].
@@ -240,13 +374,25 @@ pub fn run(opts: &Options) -> Result<Report, String> {
             s.spawn(|| loop {
                 let k = next.fetch_add(1, Ordering::Relaxed);
                 let Some(&i) = cases.get(k) else { break };
-                let (family, outcome, queries, calls, time) = run_case(i, opts, &shapes, &failures);
+                let c = run_case(i, opts, &shapes, &failures);
                 let mut r = report.lock().unwrap_or_else(|e| e.into_inner());
                 r.cases += 1;
-                *r.outcomes.entry((family.name(), outcome)).or_default() += 1;
-                r.queries += queries;
-                r.oracle_calls += calls;
-                r.toi_time += time;
+                *r.outcomes.entry((c.family.name(), c.outcome)).or_default() += 1;
+                r.queries += c.queries;
+                r.oracle_calls += c.calls.oracle;
+                r.sphere_decided += c.calls.spheres;
+                r.grid_decided += c.calls.grid;
+                r.toi_time += c.time;
+                r.oracle_time += c.oracle_time;
+                if c.outcome != "error" {
+                    r.times
+                        .entry((c.family.name(), c.eps.to_bits()))
+                        .or_default()
+                        .push(c.time);
+                    r.slowest.push((c.time, c.description));
+                    r.slowest.sort_by_key(|s| std::cmp::Reverse(s.0));
+                    r.slowest.truncate(SLOWEST);
+                }
             });
         }
     });
