@@ -71,6 +71,20 @@ fn closed_forms_and_convex_path_hold() {
     }
 }
 
+/// The time of impact's motion: the computed poses stay within `MOTION_ROUNDING_REL` of the
+/// exact motion, and the speed bound holds for points on the radius spheres (MPFR).
+#[test]
+fn motion_rounding_and_speed_bound_hold() {
+    let bounds = vec![Bound::MotionRounding, Bound::MotionSpeed];
+    let r = campaign(bounds.clone());
+    println!("{r}");
+    for b in bounds {
+        let t = r.tally(b).expect("tally");
+        assert!(t.configs >= CI_COUNT, "{}: {}", b.name(), t.configs);
+        assert_eq!(t.violations, 0, "{}: {:?}", b.name(), t.examples);
+    }
+}
+
 /// The search's realised pairs come within 1e-9 of the scale of the exact kernel's value
 /// on at least 99% of the piece pairs it solves: the reference is near the minimum, not
 /// only above it.

@@ -19,12 +19,12 @@ use rug::Float;
 /// Bits of every MPFR number (the brief asks for at least 200).
 pub const PREC: u32 = 256;
 
-fn f(x: f64) -> Float {
+pub(super) fn f(x: f64) -> Float {
     Float::with_val(PREC, x)
 }
 
 /// A point of 3-space in MPFR.
-type P3 = [Float; 3];
+pub(super) type P3 = [Float; 3];
 
 /// The exact surface point `(piece, s, theta)` in its own frame.
 fn surface_point(piece: &ProfileArc, s: f64, theta: f64) -> P3 {
@@ -56,7 +56,7 @@ fn surface_point(piece: &ProfileArc, s: f64, theta: f64) -> P3 {
 }
 
 /// `pose * x` with the pose's quaternion normalised in MPFR.
-fn transformed(pose: &Isometry3<f64>, x: &P3) -> P3 {
+pub(super) fn transformed(pose: &Isometry3<f64>, x: &P3) -> P3 {
     let q = pose.rotation.quaternion();
     let (w, i, j, k) = (f(q.w), f(q.i), f(q.j), f(q.k));
     let n2 = Float::with_val(

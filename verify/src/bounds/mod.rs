@@ -17,6 +17,7 @@
 pub mod chain;
 pub mod checks;
 pub mod exact;
+pub mod motion;
 pub mod nearest;
 pub mod pieces;
 pub mod report;
@@ -55,9 +56,12 @@ pub enum Bound {
     ClosedForm,
     /// The convex path's certified interval (whole convex solids, [`solids`]).
     Convex,
+    /// The time of impact's motion: its rounding and its speed bound ([`motion`]).
+    MotionRounding,
+    MotionSpeed,
 }
 
-pub const BOUNDS: [Bound; 13] = [
+pub const BOUNDS: [Bound; 15] = [
     Bound::Sphere,
     Bound::Torus,
     Bound::Shell,
@@ -71,6 +75,8 @@ pub const BOUNDS: [Bound; 13] = [
     Bound::LeafStages,
     Bound::ClosedForm,
     Bound::Convex,
+    Bound::MotionRounding,
+    Bound::MotionSpeed,
 ];
 
 impl Bound {
@@ -89,12 +95,18 @@ impl Bound {
             Bound::LeafStages => "leaf-stages",
             Bound::ClosedForm => "closed-form",
             Bound::Convex => "convex",
+            Bound::MotionRounding => "motion-rounding",
+            Bound::MotionSpeed => "motion-speed",
         }
     }
 
-    /// Whether the bound is checked on whole solids ([`solids`]) rather than piece chains.
+    /// Whether the bound is checked on whole solids or motions ([`solids`], [`motion`])
+    /// rather than piece chains.
     pub fn whole_solids(self) -> bool {
-        matches!(self, Bound::ClosedForm | Bound::Convex)
+        matches!(
+            self,
+            Bound::ClosedForm | Bound::Convex | Bound::MotionRounding | Bound::MotionSpeed
+        )
     }
 
     pub fn from_name(s: &str) -> Option<Bound> {
@@ -153,7 +165,11 @@ pub fn run(opts: &Options) -> Report {
                         // piece configurations stay the same whichever bounds are asked.
                         for (b, t) in tallies.iter_mut() {
                             let mut rng = solids_root.fork(k as u64);
-                            solids::check(*b, &mut rng, t);
+                            match b {
+                                Bound::MotionRounding => motion::check(true, &mut rng, t),
+                                Bound::MotionSpeed => motion::check(false, &mut rng, t),
+                                _ => solids::check(*b, &mut rng, t),
+                            }
                         }
                     }
                     (tallies, power)
