@@ -106,6 +106,7 @@ short tails        $bin/tails --out "$out" "${tails_poses[@]}"                  
 long fcl_bench   "" $bin/fcl_bench "${fcl_poses[@]}"                           # speed ratios vs FCL on close poses
 long peers       "" $bin/peers "${peers_poses[@]}"                                 # FCL, coal, parry3d in one run; convex solids vs exact GJK
 short toi_bench    $bin/toi_bench --out "$out" "${toi_motions[@]}"           # time of impact vs FCL continuous collision
+short penetration  $bin/penetration --out "$out" "${paper[@]}"                # penetration depth: interval width vs depth and eps, time, coal's EPA
 long motion      "" $bin/motion "${motion_frames[@]}"                                # Figure 12: 15 pairs in continuous motion
 long deforming   "" $bin/deforming "${deforming_frames[@]}"                             # Figure 8: static models vs M_t
 long pareto      "" $bin/pareto "${pareto_poses[@]}"                                # accuracy vs time, build, memory

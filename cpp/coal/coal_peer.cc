@@ -13,9 +13,16 @@
 //                                   -> "shape <id> 0 <bytes>"  (axis z, centred at z = zc)
 //   query <id_a> <id_b> <n> then n poses "qw qx qy qz tx ty tz" of B (A at the identity)
 //                                   -> n lines "d <distance> <ns>", then "end"
+//   signed <id_a> <id_b> <n> then n poses, as query
+//                                   -> n lines "d <signed distance> <ns> <nx> <ny> <nz>" (coal's
+//                                      normal, world frame, from A to B: B moved by
+//                                      -distance along it touches A), then "end"
 //   quit
 // Each query is timed on its own (steady_clock) in a loop over the n poses: the blocked mode of
-// experiments' benchmarks. Distances are unsigned (enable_signed_distance = false), as FCL's.
+// experiments' benchmarks. `query` distances are unsigned (enable_signed_distance = false), as
+// FCL's; `signed` ones are coal's signed distance with its default request (the penetration
+// depth of overlapping convex shapes by EPA, negated; GJK and EPA at their default tolerances
+// and iteration limits), as the penetration experiment compares.
 // A malformed command prints "error: ..." on stderr and exits with status 2.
 
 #include <coal/BVH/BVH_model.h>
@@ -74,6 +81,8 @@ int main() {
   std::map<std::string, Shape> shapes;
   coal::DistanceRequest request(false, false);  // no nearest points needed, unsigned
   request.enable_signed_distance = false;
+  coal::DistanceRequest signed_request;  // coal's defaults: signed, EPA in collision
+  signed_request.enable_signed_distance = true;
   std::string cmd;
   while (std::cin >> cmd) {
     if (cmd == "quit") break;
@@ -130,7 +139,8 @@ int main() {
       g->computeLocalAABB();
       shapes[id] = Shape{g, zc};
       std::printf("shape %s 0 %zu\n", id.c_str(), bytes);
-    } else if (cmd == "query") {
+    } else if (cmd == "query" || cmd == "signed") {
+      const coal::DistanceRequest& req = cmd == "query" ? request : signed_request;
       auto ia = read<std::string>("shape id");
       auto ib = read<std::string>("shape id");
       auto n = read<long>("pose count");
@@ -150,15 +160,24 @@ int main() {
       const coal::Transform3s ta = offset(a->second.zc);
       coal::ComputeDistance functor(a->second.geometry.get(), b->second.geometry.get());
       std::vector<double> d(n), ns(n);
+      std::vector<coal::Vec3s> normal(n);
       for (long k = 0; k < n; ++k) {
         coal::DistanceResult result;
         auto start = std::chrono::steady_clock::now();
-        functor(ta, poses[k], request, result);
+        functor(ta, poses[k], req, result);
         auto stop = std::chrono::steady_clock::now();
         d[k] = result.min_distance;
+        normal[k] = result.normal;
         ns[k] = std::chrono::duration<double, std::nano>(stop - start).count();
       }
-      for (long k = 0; k < n; ++k) std::printf("d %.17g %.1f\n", d[k], ns[k]);
+      for (long k = 0; k < n; ++k) {
+        if (cmd == "query") {
+          std::printf("d %.17g %.1f\n", d[k], ns[k]);
+        } else {
+          std::printf("d %.17g %.1f %.17g %.17g %.17g\n", d[k], ns[k], normal[k][0], normal[k][1],
+                      normal[k][2]);
+        }
+      }
       std::printf("end\n");
     } else {
       fail("unknown command '" + cmd + "'");

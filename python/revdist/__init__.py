@@ -85,6 +85,28 @@ class DistanceResult:
     node_pairs, leaf_bounds, leaf_tests, subdivided_pairs : uint64 (N,)
         What each query did (the command line's JSON counters).
 
+    With ``signed=True`` (else these are None):
+
+    signed_lower, signed_upper : float64 (N,)
+        Certified interval of the signed distance: the distance when the solids are apart,
+        minus the penetration depth when they overlap (``[-pd_upper, -pd_lower]``), and
+        ``[-pd_upper, upper]`` when they touch within the trees' accuracy.
+    pd_lower, pd_upper : float64 (N,)
+        Certified interval ``pd_lower <= PD <= pd_upper`` of the translational penetration
+        depth ``PD = min |t|`` over translations ``t`` of B that leave the interiors
+        disjoint. Exactly ``0.0`` (both) where the solids are certified apart (their depth
+        is 0); ``pd_lower`` is 0 where no common interior point was certified (touching).
+    pd_direction : float64 (N, 3)
+        Unit translation of B achieving ``pd_upper`` (B moved by more than ``pd_upper``
+        along it is apart from A), world frame; zeros where the solids are certified apart.
+
+    With ``signed=True`` the gradient arrays hold the *signed* distance's gradient: the
+    distance's when apart; where the solids overlap and ``pd_upper - pd_lower <= max(2
+    (eps_a + eps_b), 5 % of pd_upper)``, that of ``-PD`` (``pd_direction`` in translation,
+    ``(contact_b - origin_b) x pd_direction`` in rotation; a one-sided derivative where the
+    minimal separating translation is not unique); NaN otherwise (``docs/cli.md``,
+    ``--signed``).
+
     A result of a single pose ``(7,)`` or ``(4, 4)`` holds scalars and ``(3,)`` points.
     """
 
@@ -104,13 +126,22 @@ class DistanceResult:
         "leaf_bounds",
         "leaf_tests",
         "subdivided_pairs",
+        "signed_lower",
+        "signed_upper",
+        "pd_lower",
+        "pd_upper",
+        "pd_direction",
     )
 
     def __init__(self, arrays):
         single = arrays.pop("single")
         arrays["width_limit"] = _WIDTH_NAMES[arrays.pop("width_limit_code")]
         for key in self.__slots__:
-            value = arrays[key]
+            value = arrays.get(key)
+            if value is None:
+                # The signed fields of an unsigned call.
+                object.__setattr__(self, key, None)
+                continue
             if single:
                 value = value[0]
                 value = value.item() if np.ndim(value) == 0 else value
@@ -143,6 +174,7 @@ def distance(
     max_node_pairs=None,
     refine=False,
     threads=None,
+    signed=False,
 ):
     """Certified distances between solid ``a`` and solid ``b`` at each of ``poses``.
 
@@ -169,6 +201,12 @@ def distance(
         runs on the calling thread, so that several Python threads run side by side;
         calls with the same ``threads=k > 1`` share one pool of k threads. Answers do not
         depend on it.
+    signed : bool
+        Also the signed distance and the certified penetration depth of overlapping solids
+        (``signed_lower``, ``signed_upper``, ``pd_lower``, ``pd_upper``, ``pd_direction``;
+        see :class:`DistanceResult`), the command line's ``distance --signed``, the same
+        bits. Costs one distance query where the solids are certified apart, and a search
+        (a few more distance queries) where they are not.
 
     Returns
     -------
@@ -193,6 +231,7 @@ def distance(
         refine=refine,
         threads=threads,
         warm=False,
+        signed=signed,
     )
     return DistanceResult(arrays)
 
@@ -225,9 +264,11 @@ class Pair:
         max_time_ms=None,
         max_node_pairs=None,
         refine=False,
+        signed=False,
     ):
         """Distances at ``poses`` in order (arguments as :func:`distance`, without
-        ``threads``: a motion is sequential)."""
+        ``threads``: a motion is sequential). Signed queries (``signed=True``) run cold,
+        neither using nor changing the warm start."""
         arrays = self._pair.distance(
             _as_float64("poses", poses),
             pose_a=_pose_arg("pose_a", pose_a),
@@ -235,6 +276,7 @@ class Pair:
             max_time_ms=max_time_ms,
             max_node_pairs=max_node_pairs,
             refine=refine,
+            signed=signed,
         )
         return DistanceResult(arrays)
 

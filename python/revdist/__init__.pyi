@@ -81,6 +81,15 @@ class DistanceResult:
     leaf_bounds: npt.NDArray[np.uint64]
     leaf_tests: npt.NDArray[np.uint64]
     subdivided_pairs: npt.NDArray[np.uint64]
+    signed_lower: Optional[npt.NDArray[np.float64]]
+    """signed=True: certified lower bound of the signed distance (-PD upper when overlapping)."""
+    signed_upper: Optional[npt.NDArray[np.float64]]
+    pd_lower: Optional[npt.NDArray[np.float64]]
+    """signed=True: certified lower bound of the penetration depth; 0.0 where certified apart."""
+    pd_upper: Optional[npt.NDArray[np.float64]]
+    """signed=True: certified upper bound of the penetration depth; 0.0 where certified apart."""
+    pd_direction: Optional[npt.NDArray[np.float64]]
+    """signed=True: unit translation of B achieving pd_upper (N, 3); zeros where apart."""
     def __len__(self) -> int: ...
 
 def distance(
@@ -94,9 +103,11 @@ def distance(
     max_node_pairs: Optional[int] = None,
     refine: bool = False,
     threads: Optional[int] = None,
+    signed: bool = False,
 ) -> DistanceResult:
     """Certified distances between a (at pose_a, default identity) and b at each pose;
-    the GIL is released and the poses are spread over the cores."""
+    the GIL is released and the poses are spread over the cores. signed=True adds the
+    signed distance and the penetration depth's certified interval."""
 
 class Pair:
     """A prepared pair for a motion: consecutive poses warm-start each other."""
@@ -113,6 +124,7 @@ class Pair:
         max_time_ms: Optional[float] = None,
         max_node_pairs: Optional[int] = None,
         refine: bool = False,
+        signed: bool = False,
     ) -> DistanceResult: ...
     def reset(self) -> None: ...
     def __reduce__(self) -> tuple[Any, ...]: ...

@@ -49,6 +49,7 @@ class Pair:
         refine: bool = False,
         threads: Optional[int] = None,
         warm: bool = True,
+        signed: bool = False,
     ) -> dict[str, Any]: ...
     def reset(self) -> None: ...
 

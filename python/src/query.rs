@@ -6,7 +6,9 @@
 //! Each pose is measured by `revdist::query::try_distance` (`try_distance_cached` for a
 //! `Pair`) with A at `pose_a` and B at the pose, exactly the command line's batch query
 //! (`revdist distance --batch`, which places A at the identity), so that the answers are
-//! the same bits.
+//! the same bits. With `signed`, by `revdist::query::signed_distance` (always cold), the
+//! batch's `"signed": true`: the distance of the same query plus the penetration depth's
+//! certified interval and the signed distance's gradient.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -18,7 +20,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 use revdist::query::traverse::width_limit;
-use revdist::query::{try_distance, try_distance_cached, Distance, QueryCache, QueryOptions};
+use revdist::query::{
+    signed_distance, try_distance, try_distance_cached, Distance, QueryCache, QueryOptions,
+    SignedDistance,
+};
 use revdist::request::query_options;
 use revdist::solid::Solid;
 
@@ -51,6 +56,37 @@ struct Row {
     closed_form: bool,
     /// Index into [`WIDTH_LIMIT_NAMES`].
     width_limit: u8,
+    /// With `signed`: the signed distance and the penetration depth.
+    signed: Option<SignedRow>,
+}
+
+/// The fields of a `SignedDistance` the result arrays hold (`docs/cli.md`, `--signed`).
+struct SignedRow {
+    /// The signed distance's certified interval.
+    lower: f64,
+    upper: f64,
+    /// The penetration depth's certified interval and the unit translation of B achieving
+    /// its upper bound: `[0, 0]` and zeros when the solids are certified apart (their depth
+    /// is 0), as `revdist::query::penetration` answers.
+    pd_lower: f64,
+    pd_upper: f64,
+    pd_direction: [f64; 3],
+}
+
+impl SignedRow {
+    fn new(s: &SignedDistance) -> SignedRow {
+        let (pd_lower, pd_upper, pd_direction) = match &s.penetration {
+            Some(p) => (p.lower, p.upper, p.direction.into()),
+            None => (0.0, 0.0, [0.0; 3]),
+        };
+        SignedRow {
+            lower: s.lower,
+            upper: s.upper,
+            pd_lower,
+            pd_upper,
+            pd_direction,
+        }
+    }
 }
 
 impl Row {
@@ -75,7 +111,21 @@ impl Row {
             budget_exhausted: d.stats.budget_exhausted,
             closed_form: d.stats.closed_forms > 0,
             width_limit,
+            signed: None,
         }
+    }
+
+    /// The row of a signed query: its distance's fields, the signed distance's gradient
+    /// ([`SignedDistance::gradient`]: the distance's when apart, the depth's where its
+    /// interval is narrow, else NaN) and the depth, as the command line's `--signed`.
+    fn from_signed(s: &SignedDistance, origin_b: &Point3<f64>, width_limit: u8) -> Row {
+        let mut row = Row::new(&s.distance, origin_b, width_limit);
+        let g = s.gradient(origin_b);
+        let nan = [f64::NAN; 3];
+        row.gradient_translation = g.map_or(nan, |g| g.translation.into());
+        row.gradient_rotation = g.map_or(nan, |g| g.rotation.into());
+        row.signed = Some(SignedRow::new(s));
+        row
     }
 }
 
@@ -85,6 +135,8 @@ struct Call {
     poses_a: Vec<Isometry3<f64>>,
     poses_b: Poses,
     opts: QueryOptions,
+    /// Signed distances and penetration depths (cold queries).
+    signed: bool,
 }
 
 impl Call {
@@ -95,6 +147,7 @@ impl Call {
         max_time_ms: Option<f64>,
         max_node_pairs: Option<usize>,
         refine: bool,
+        signed: bool,
     ) -> PyResult<Call> {
         let opts = query_options(
             tolerance,
@@ -119,6 +172,7 @@ impl Call {
             poses_a,
             poses_b,
             opts,
+            signed,
         })
     }
 
@@ -129,7 +183,8 @@ impl Call {
 
 /// The query of pose `i` on `pair`, copies of the two solids whose poses are set here (the
 /// same as `Solid::with_pose`, without touching the shared trees' reference counts), with or
-/// without a warm start.
+/// without a warm start; a signed query is always cold (the warm start is not used or
+/// changed).
 fn answer(
     pair: &mut (Solid, Solid),
     call: &Call,
@@ -139,22 +194,29 @@ fn answer(
     let (a, b) = pair;
     a.pose = call.pose_a(i);
     b.pose = call.poses_b.poses[i];
+    let origin_b = Point3::from(b.pose.translation.vector);
+    if call.signed {
+        let s = signed_distance(a, b, &call.opts).map_err(|e| format!("poses[{i}]: {e}"))?;
+        let limit = width_limit(a, b, &call.opts, &s.distance) as u8;
+        return Ok(Row::from_signed(&s, &origin_b, limit));
+    }
     let d = match cache {
         Some(cache) => try_distance_cached(a, b, &call.opts, cache),
         None => try_distance(a, b, &call.opts),
     }
     .map_err(|e| format!("poses[{i}]: {e}"))?;
     let limit = width_limit(a, b, &call.opts, &d) as u8;
-    let origin_b = Point3::from(b.pose.translation.vector);
     Ok(Row::new(&d, &origin_b, limit))
 }
 
 /// The answers as numpy arrays in a dict (the Python layer wraps them in `DistanceResult`),
-/// or the first pose's error as a `ValueError`.
+/// or the first pose's error as a `ValueError`. With `signed`, also `signed_lower`,
+/// `signed_upper`, `pd_lower`, `pd_upper` and `pd_direction`.
 fn arrays<'py>(
     py: Python<'py>,
     answers: Vec<Answer>,
     single: bool,
+    signed: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let n = answers.len();
     let mut value = Vec::with_capacity(n);
@@ -172,8 +234,20 @@ fn arrays<'py>(
     let mut subdivided = Vec::with_capacity(n);
     let mut budget = Vec::with_capacity(n);
     let mut closed = Vec::with_capacity(n);
+    let mut s_lower = Vec::with_capacity(n);
+    let mut s_upper = Vec::with_capacity(n);
+    let mut pd_lower = Vec::with_capacity(n);
+    let mut pd_upper = Vec::with_capacity(n);
+    let mut pd_direction = Vec::with_capacity(3 * n);
     for a in answers {
         let r = a.map_err(value_error)?;
+        if let Some(s) = &r.signed {
+            s_lower.push(s.lower);
+            s_upper.push(s.upper);
+            pd_lower.push(s.pd_lower);
+            pd_upper.push(s.pd_upper);
+            pd_direction.extend(s.pd_direction);
+        }
         value.push(r.value);
         lower.push(r.lower);
         upper.push(r.upper);
@@ -207,6 +281,13 @@ fn arrays<'py>(
     out.set_item("subdivided_pairs", subdivided.into_pyarray(py))?;
     out.set_item("budget_exhausted", budget.into_pyarray(py))?;
     out.set_item("closed_form", closed.into_pyarray(py))?;
+    if signed {
+        out.set_item("signed_lower", s_lower.into_pyarray(py))?;
+        out.set_item("signed_upper", s_upper.into_pyarray(py))?;
+        out.set_item("pd_lower", pd_lower.into_pyarray(py))?;
+        out.set_item("pd_upper", pd_upper.into_pyarray(py))?;
+        out.set_item("pd_direction", points(pd_direction)?.into_pyarray(py))?;
+    }
     out.set_item("single", single)?;
     Ok(out)
 }
@@ -254,10 +335,11 @@ impl PyPair {
 
     /// Distances at `poses`. With `warm`, in order, each warm-started by the previous one
     /// (and the first by the last pose of the previous warm call), on the calling thread;
-    /// without, independent cold queries spread over `threads` (default every core). The
-    /// GIL is released while the queries run.
+    /// without, independent cold queries spread over `threads` (default every core). With
+    /// `signed`, signed distances and penetration depths, each query cold (in order when
+    /// `warm`, the warm start untouched). The GIL is released while the queries run.
     #[pyo3(signature = (poses, *, pose_a = None, tolerance = None, max_time_ms = None,
-        max_node_pairs = None, refine = false, threads = None, warm = true))]
+        max_node_pairs = None, refine = false, threads = None, warm = true, signed = false))]
     #[allow(clippy::too_many_arguments)]
     fn distance<'py>(
         &self,
@@ -270,6 +352,7 @@ impl PyPair {
         refine: bool,
         threads: Option<usize>,
         warm: bool,
+        signed: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let call = Call::new(
             &poses,
@@ -278,6 +361,7 @@ impl PyPair {
             max_time_ms,
             max_node_pairs,
             refine,
+            signed,
         )?;
         let answers = if warm {
             if threads.is_some() {
@@ -289,7 +373,7 @@ impl PyPair {
         } else {
             self.spread(py, &call, threads)?
         };
-        arrays(py, answers, call.poses_b.single)
+        arrays(py, answers, call.poses_b.single, call.signed)
     }
 
     /// Forgets the warm start (the next query is cold).

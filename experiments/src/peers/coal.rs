@@ -64,6 +64,9 @@ pub struct Built {
 pub struct Answer {
     pub distance: f64,
     pub us: f64,
+    /// Signed queries: coal's unit normal from A to B (world frame); B moved by
+    /// `-distance` along it touches A.
+    pub normal: Option<[f64; 3]>,
 }
 
 /// A running `coal_peer` process.
@@ -174,7 +177,24 @@ impl CoalPeer {
     /// coal's distance from shape `a` (at the identity) to shape `b` at each pose, each query
     /// timed by the program (one after the other: blocked).
     pub fn query(&mut self, a: &str, b: &str, poses: &[Isometry3<f64>]) -> Res<Vec<Answer>> {
-        let mut s = format!("query {a} {b} {}\n", poses.len());
+        self.queries("query", a, b, poses)
+    }
+
+    /// coal's *signed* distance (its default request: EPA's penetration depth, negated, where
+    /// the shapes overlap) from shape `a` (at the identity) to shape `b` at each pose, timed
+    /// as [`CoalPeer::query`].
+    pub fn signed_query(&mut self, a: &str, b: &str, poses: &[Isometry3<f64>]) -> Res<Vec<Answer>> {
+        self.queries("signed", a, b, poses)
+    }
+
+    fn queries(
+        &mut self,
+        command: &str,
+        a: &str,
+        b: &str,
+        poses: &[Isometry3<f64>],
+    ) -> Res<Vec<Answer>> {
+        let mut s = format!("{command} {a} {b} {}\n", poses.len());
         for p in poses {
             let (q, t) = (p.rotation.quaternion(), p.translation.vector);
             let _ = writeln!(
@@ -192,6 +212,12 @@ impl CoalPeer {
                 ["d", d, ns] => answers.push(Answer {
                     distance: d.parse()?,
                     us: ns.parse::<f64>()? * 1e-3,
+                    normal: None,
+                }),
+                ["d", d, ns, x, y, z] => answers.push(Answer {
+                    distance: d.parse()?,
+                    us: ns.parse::<f64>()? * 1e-3,
+                    normal: Some([x.parse()?, y.parse()?, z.parse()?]),
                 }),
                 _ => return Err(format!("coal_peer: unexpected reply '{line}'").into()),
             }

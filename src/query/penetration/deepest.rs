@@ -10,7 +10,9 @@
 //! two nearest surface points (the centre of the ball touching both, exact for two
 //! spheres), a step along the weaker side's gradient (away from its nearest point), and a
 //! step along the sum of both gradients; a step that gains nothing halves the step length.
-//! Only the final point's evaluation matters for the certificate.
+//! A seed on a surface (the distance query's overlap point often is one) has no gradient
+//! there; when the first ascent certifies nothing it starts again from the deepest of a few
+//! points about the seed. Only the final point's evaluation matters for the certificate.
 
 use crate::bvh::containment::point_in_profile_nearest;
 use crate::bvh::QueryTree;
@@ -23,6 +25,10 @@ const MAX_STEPS: usize = 60;
 /// [`Pair::ascend`]): the maximiser of the weighted objective loses at most this share of
 /// the smaller clearance from the best sum.
 const BALANCE_SHARE: f64 = 1e-3;
+
+/// Offsets, as shares of the smaller solid's size, of the points about the seed from which
+/// an ascent that found no common point starts again ([`Pair::ascend`]).
+const RETRY_SHARES: [f64; 2] = [1e-3, 1e-2];
 
 /// One side of a probe: signed margin and nearest point of one solid's approximating
 /// surface.
@@ -111,6 +117,12 @@ impl<'a> Pair<'a> {
         }
     }
 
+    /// Radius of the smaller root disk: the scale of the smaller solid.
+    fn scale(&self) -> f64 {
+        let r = |t: &QueryTree| t.nodes[t.root as usize].bound.radius;
+        r(self.ta).min(r(self.tb))
+    }
+
     /// Classifies `x` (A's frame) against both solids.
     pub fn probe(&mut self, x: Point3<f64>) -> Probe {
         self.probes += 1;
@@ -138,7 +150,34 @@ impl<'a> Pair<'a> {
         e_b: f64,
         slack: f64,
     ) -> Probe {
-        let first = self.climb(seed, step_tol, Probe::depth);
+        let mut first = self.climb(seed, step_tol, Probe::depth);
+        if first.certified_bound(e_a, e_b, slack).is_none() {
+            // A seed on a surface (the distance query's overlap point often is one) has no
+            // gradient there: start again from the deepest of a few points about it.
+            let scale = self.scale();
+            let mut start = first;
+            for share in RETRY_SHARES {
+                for d in [
+                    Vector3::x(),
+                    -Vector3::x(),
+                    Vector3::y(),
+                    -Vector3::y(),
+                    Vector3::z(),
+                    -Vector3::z(),
+                ] {
+                    let p = self.probe(seed + d * (share * scale));
+                    if p.depth() > start.depth() {
+                        start = p;
+                    }
+                }
+            }
+            if start.x != first.x {
+                let retry = self.climb(start.x, step_tol, Probe::depth);
+                if retry.depth() > first.depth() {
+                    first = retry;
+                }
+            }
+        }
         let second = self.climb(first.x, step_tol, |p| {
             let ca = p.a.signed_margin - e_a - slack;
             let cb = p.b.signed_margin - e_b - slack;

@@ -7,8 +7,11 @@
 //! normal `n` and gap `g` gives the touching translation `t - g n` and the next candidate
 //! `(s' + margin) n`, `s'` that translation's component along `n` (a step in contact space
 //! towards a translation parallel to its contact normal); an answer that is not separated
-//! moves `t` further along `u`, doubling the step each time. A direction is abandoned
-//! once its translations are no shorter than the best upper bound so far.
+//! moves `t` further along `u`, each step three times the last and the first half the
+//! estimate (so that a touching length 60 times the estimate, e.g. from a weak lower bound,
+//! is reached within the direction's steps; the contact-space step then shortens an
+//! overshoot). A direction is abandoned once its translations are no shorter than the best
+//! upper bound so far.
 
 use crate::query::traverse::distance::{distance, query_slack, Distance, QueryOptions};
 use crate::query::traverse::search::Budget;
@@ -175,7 +178,7 @@ impl<'a> Search<'a> {
         }
         let mut u = u.normalize();
         let mut s = s0.max(0.0);
-        let mut grow = self.margin.max(0.25 * s);
+        let mut grow = self.margin.max(0.5 * s);
         for _ in 0..STEPS_PER_DIRECTION {
             if self.done() {
                 return;
@@ -201,11 +204,11 @@ impl<'a> Search<'a> {
                         return;
                     }
                     (u, s) = (n, s_next);
-                    grow = self.margin.max(0.25 * s);
+                    grow = self.margin.max(0.5 * s);
                 }
                 (None, _) => {
                     s += grow;
-                    grow *= 2.0;
+                    grow *= 3.0;
                 }
             }
         }

@@ -205,3 +205,38 @@ fn certificates_hold_on_models() {
     }
     assert!(overlapping > 20, "only {overlapping} overlapping cases");
 }
+
+/// The distance query's overlap point of this pose lies on a surface, where the margins have
+/// no gradient: the first ascent stays there and certifies nothing, and the retry from the
+/// points about the seed ([`deepest::Pair::ascend`]) finds the common point (B pushed 1.6e-2
+/// into A from a touching pose; the interval was `[0, 1.09]` before the retry).
+#[test]
+fn an_overlap_point_on_a_surface_still_gives_a_common_point() {
+    let a = named("bottle", 1e-4);
+    let pose = Isometry3::from_parts(
+        Translation3::new(
+            -1.29957938382837979e-1,
+            6.28435070447116884e-1,
+            -3.09554892980914209e-1,
+        ),
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+            -1.72555180812198235e-2,
+            6.01122428845170753e-1,
+            1.36709071768659707e-1,
+            7.87187844374633960e-1,
+        )),
+    );
+    let b = named("table", 1e-4).with_pose(pose);
+    let p = penetration(&a, &b, &QueryOptions::default()).unwrap();
+    let x = p.point.expect("a certified common point");
+    let in_a = point_in_solid(&a.tree, &(a.pose.inverse() * x));
+    let in_b = point_in_solid(&b.tree, &(b.pose.inverse() * x));
+    let sum = in_a.margin - a.tree.eps + in_b.margin - b.tree.eps;
+    assert!(in_a.inside && in_b.inside && 0.0 < p.lower && p.lower <= sum);
+    assert!(
+        p.upper - p.lower <= target(&a, &b, p.lower),
+        "[{}, {}]",
+        p.lower,
+        p.upper
+    );
+}

@@ -90,13 +90,14 @@ pub struct Outcome {
     pub violations: Vec<String>,
 }
 
-fn ball_profile(r: f64) -> Profile {
+/// A ball of radius `r` centred on its frame's origin (an exact half circle).
+pub fn ball_profile(r: f64) -> Profile {
     let c = arc([0.0, 0.0], r, deg(-90.0), deg(90.0)).expect("valid half circle");
     Profile::new("ball", vec![c]).expect("valid ball")
 }
 
 /// Centre of a shape's root disk on its axis (its own frame) and its radius.
-fn bounding_ball(s: &Solid) -> (Point3<f64>, f64) {
+pub fn bounding_ball(s: &Solid) -> (Point3<f64>, f64) {
     let root = &s.tree.nodes[s.tree.root as usize].bound;
     (
         Point3::new(0.0, 0.0, root.center.y),
@@ -105,7 +106,7 @@ fn bounding_ball(s: &Solid) -> (Point3<f64>, f64) {
 }
 
 /// B's pose with rotation `rot` whose bounding centre sits at A's plus `s u`.
-fn pose_along(
+pub fn pose_along(
     a: &Solid,
     b: &Solid,
     rot: UnitQuaternion<f64>,
@@ -119,8 +120,10 @@ fn pose_along(
 }
 
 /// The touching length along `u` by bisection on revdist's certified verdict (placement
-/// only), from the bounding balls' sum.
-fn touching_length(a: &Solid, b: &Solid, rot: UnitQuaternion<f64>, u: &Vector3<f64>) -> f64 {
+/// only), from the bounding balls' sum. B at `pose_along(a, b, rot, u, touching_length(..))`
+/// is certified apart from A; moved from there by `-p u`, its penetration depth is at most
+/// `p` (moving it back separates it).
+pub fn touching_length(a: &Solid, b: &Solid, rot: UnitQuaternion<f64>, u: &Vector3<f64>) -> f64 {
     let opts = QueryOptions::default();
     let (_, ra) = bounding_ball(a);
     let (_, rb) = bounding_ball(b);
