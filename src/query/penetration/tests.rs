@@ -215,15 +215,15 @@ fn an_overlap_point_on_a_surface_still_gives_a_common_point() {
     let a = named("bottle", 1e-4);
     let pose = Isometry3::from_parts(
         Translation3::new(
-            -1.29957938382837979e-1,
-            6.28435070447116884e-1,
-            -3.09554892980914209e-1,
+            -0.12995793838283798,
+            0.6284350704471169,
+            -0.3095548929809142,
         ),
         UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-            -1.72555180812198235e-2,
-            6.01122428845170753e-1,
-            1.36709071768659707e-1,
-            7.87187844374633960e-1,
+            -0.017255518081219823,
+            0.6011224288451708,
+            0.1367090717686597,
+            0.787187844374634,
         )),
     );
     let b = named("table", 1e-4).with_pose(pose);
