@@ -13,4 +13,5 @@ pub mod provenance;
 pub mod queries;
 pub mod random_profiles;
 pub mod shard;
+pub mod timing;
 pub mod toi;

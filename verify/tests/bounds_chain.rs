@@ -38,15 +38,7 @@ fn volume_stage1_and_subdivision_bounds_hold() {
     let r = campaign(bounds.clone());
     println!("{r}");
     for b in bounds {
-        let t = r.tally(b).expect("tally");
-        assert!(
-            t.configs >= CI_COUNT,
-            "{}: {} configurations",
-            b.name(),
-            t.configs
-        );
-        assert_eq!(t.violations, 0, "{}: {:?}", b.name(), t.examples);
-        assert!(t.finite > 0 && t.positive > 0, "{}: vacuous", b.name());
+        assert_holds(&r, b, 1);
     }
     let p = &r.power;
     assert!(p.contacts > 300 && p.contacts_met == p.contacts, "{p:?}");
@@ -60,14 +52,8 @@ fn closed_forms_and_convex_path_hold() {
     let r = campaign(bounds.clone());
     println!("{r}");
     for b in bounds {
-        let t = r.tally(b).expect("tally");
-        assert!(t.configs >= CI_COUNT, "{}: {}", b.name(), t.configs);
-        assert_eq!(t.violations, 0, "{}: {:?}", b.name(), t.examples);
-        assert!(
-            t.positive * 5 >= t.configs,
-            "{}: too few separations",
-            b.name()
-        );
+        // A fifth of the configurations at least claim a separation.
+        assert_holds(&r, b, CI_COUNT / 5);
     }
 }
 
@@ -79,9 +65,7 @@ fn motion_rounding_and_speed_bound_hold() {
     let r = campaign(bounds.clone());
     println!("{r}");
     for b in bounds {
-        let t = r.tally(b).expect("tally");
-        assert!(t.configs >= CI_COUNT, "{}: {}", b.name(), t.configs);
-        assert_eq!(t.violations, 0, "{}: {:?}", b.name(), t.examples);
+        assert_holds(&r, b, 1);
     }
 }
 
@@ -187,5 +171,24 @@ fn assert_kernel_holds_at_contact(a: ProfileArc, b: ProfileArc, pos: &Isometry3<
         d.sampled || d.distance <= realised + slack,
         "kernel {} > realised {realised} + slack {slack}",
         d.distance
+    );
+}
+
+/// Bound `b` ran on every configuration, was never violated, and claimed a positive value at
+/// least `min_positive` times (a test that never claims anything cannot fail).
+fn assert_holds(r: &verify::bounds::report::Report, b: Bound, min_positive: usize) {
+    let t = r.tally(b).expect("tally");
+    assert!(
+        t.configs >= CI_COUNT,
+        "{}: {} configurations",
+        b.name(),
+        t.configs
+    );
+    assert_eq!(t.violations, 0, "{}: {:?}", b.name(), t.examples);
+    assert!(
+        t.finite > 0 && t.positive >= min_positive,
+        "{}: vacuous ({} positive)",
+        b.name(),
+        t.positive
     );
 }

@@ -54,6 +54,7 @@ use std::sync::Arc;
 use verify::oracle::PlanarIndex;
 use verify::penetration::oracle::{apart_at, common_point_bound};
 use verify::penetration::{ball_profile, pose_along, touching_length};
+use verify::timing::thread_cpu_us;
 
 /// Relative pushes `p / size` of the default run and of `--paper`.
 const LEVELS: [f64; 6] = [1e-4, 1e-3, 1e-2, 3e-2, 0.1, 0.3];
@@ -89,20 +90,6 @@ struct Args {
     paper: Paper,
     #[command(flatten)]
     out: Out,
-}
-
-/// CPU time of the calling thread in microseconds.
-fn thread_cpu_us() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid timespec the call writes to; the clock id is a constant.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    if rc != 0 {
-        return f64::NAN;
-    }
-    ts.tv_sec as f64 * 1e6 + ts.tv_nsec as f64 / 1e3
 }
 
 /// What kind of contact a case is.

@@ -52,20 +52,7 @@ use revdist::toi::{time_of_impact, Motion, ToiOptions, ToiOutcome};
 use std::fmt::Write as _;
 use std::sync::Arc;
 use std::time::Instant;
-
-/// CPU time of the calling thread in microseconds.
-fn thread_cpu_us() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid timespec the call writes to; the clock id is a constant.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    if rc != 0 {
-        return f64::NAN;
-    }
-    ts.tv_sec as f64 * 1e6 + ts.tv_nsec as f64 / 1e3
-}
+use verify::timing::thread_cpu_us;
 
 /// Runs `f`, returning its result, wall time and thread CPU time (microseconds).
 fn timed<T>(f: impl FnOnce() -> T) -> (T, f64, f64) {

@@ -7,6 +7,7 @@ pub mod check;
 pub mod motions;
 
 use crate::oracle::{self, PlanarIndex};
+use crate::timing::thread_cpu;
 use check::{Breach, Scene};
 use motions::{random_motion, Extent, Family, MotionCase};
 use revdist::rng::SplitMix64;
@@ -62,18 +63,6 @@ fn build_shape(name: &str, eps: &[f64]) -> Result<Shape, String> {
         solids,
         extent,
     })
-}
-
-/// CPU time of the calling thread (`CLOCK_THREAD_CPUTIME_ID`): a search's own time, which
-/// other processes on the cores do not inflate. `None` when the clock is unavailable.
-fn thread_cpu() -> Option<Duration> {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid timespec the call writes to; the clock id is a constant.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    (rc == 0).then(|| Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32))
 }
 
 /// Runs `f`, returning its result and the calling thread's CPU time it took (the wall time
