@@ -138,15 +138,17 @@ enum Command {
         shard: verify::shard::Flags,
     },
     /// The lower-bound chain link by link: every node, piece, stage-1, subdivision, kernel
-    /// and leaf-stage lower bound against MPFR distances of realised surface pairs on
-    /// adversarial configurations (docs/verification.md); exit status 1 on any violation.
+    /// and leaf-stage lower bound, the closed forms and the convex path on whole primitives,
+    /// and the time of impact's motion, against MPFR on adversarial configurations
+    /// (docs/verification.md); exit status 1 on any violation.
     Bounds {
         #[arg(long, default_value_t = 1000)]
         count: usize,
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Only this bound (repeat or separate by commas): sphere, torus, shell, slab, hull,
-        /// node-sphere, node-torus, patch-lower, subdivision, kernel, leaf-stages.
+        /// node-sphere, node-torus, patch-lower, subdivision, kernel, leaf-stages,
+        /// closed-form, convex, motion-rounding, motion-speed.
         #[arg(long, value_delimiter = ',')]
         bound: Vec<String>,
         /// Worker threads.
