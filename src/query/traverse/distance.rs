@@ -246,9 +246,17 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
             .filter(|&(_, _, m)| m > eps_sum + slack)
             .map(|(p, _, _)| p);
         let witness = Some((s.point_a, s.point_b));
-        match pen
-            .or_else(|| certify_overlap(&a.tree, &b.tree, &pos_ab, s.best_pair, witness, slack))
-        {
+        match pen.or_else(|| {
+            certify_overlap(
+                &a.tree,
+                &b.tree,
+                &pos_ab,
+                s.best_pair,
+                witness,
+                s.surfaces_meet,
+                slack,
+            )
+        }) {
             Some(x) => Verdict::Overlap(x),
             None => Verdict::Undecided,
         }

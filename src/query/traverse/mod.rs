@@ -12,6 +12,7 @@
 //! trees and containment tests of [`crate::bvh`].
 
 pub mod batch;
+mod deep_point;
 pub mod distance;
 pub mod gradient;
 pub mod overlap;

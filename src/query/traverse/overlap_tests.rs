@@ -1,6 +1,7 @@
 //! The pruned searches of [`super`] against the flat loops they replace: the same samples,
 //! tested one by one with the exact (uncapped) classification.
 
+use super::super::deep_point::{deep_point, DeepPoint, Direction};
 use super::*;
 use crate::bvh::containment::point_in_solid;
 use crate::models::model;
@@ -23,52 +24,72 @@ fn exact_depth(outer: &QueryTree, x: &Point3<f64>) -> f64 {
     }
 }
 
-/// The flat loop: every patch's ends and midpoint at every angle of [`thetas`].
-fn flat_deepest(outer: &QueryTree, inner: &QueryTree, pos: &Isometry3<f64>) -> f64 {
+/// The deepest of dense samples of `inner`'s approximating surface in `outer`: every patch
+/// at 17 parameters and 192 angles (a lower estimate of the surface's deepest point).
+fn dense_deepest(outer: &QueryTree, inner: &QueryTree, pos: &Isometry3<f64>) -> f64 {
     let mut best = f64::NEG_INFINITY;
-    for m in surface_meridian_points(inner) {
-        for th in thetas() {
-            best = best.max(exact_depth(outer, &(pos * lift_at(m, th))));
+    for p in &inner.patches {
+        for i in 0..17 {
+            let m = p.arc.point_at(i as f64 / 16.0);
+            for k in 0..192 {
+                let th = k as f64 * TAU / 192.0;
+                best = best.max(exact_depth(outer, &(pos * lift_at(m, th))));
+            }
         }
     }
     best
 }
 
+/// The branch and bound ([`deep_point`]) against dense sampling: every point it returns is
+/// deeper than the threshold (exact classification), `Absent` only where no sample is, and
+/// it finds a certificate wherever a sample clears the threshold by a margin.
 #[test]
-fn surface_samples_through_the_tree_match_the_flat_loop() {
+fn deep_point_search_agrees_with_dense_samples() {
     let pairs = [
         ("pawn", "cup"),
         ("bottle_ff", "cup_ff"),
         ("sphere", "table"),
     ];
     let mut rng = SplitMix64(27);
-    let mut found = 0;
-    let mut cases = 0;
+    let (mut found, mut absent, mut cases) = (0, 0, 0);
     for (a, b) in pairs {
         let (sa, sb) = (solid(a, 1e-3), solid(b, 1e-3));
-        for _ in 0..12 {
+        for _ in 0..6 {
             let pos = Isometry3::from_parts(
                 Translation3::from(rng.unit() * rng.range(0.0, 1.0)),
                 UnitQuaternion::from_scaled_axis(rng.unit() * rng.range(0.0, 3.0)),
             );
-            let deepest = flat_deepest(&sa.tree, &sb.tree, &pos);
+            let deepest = dense_deepest(&sa.tree, &sb.tree, &pos);
             for threshold in [1e-3, 2e-2, 0.2] {
-                // Stay clear of ties within rounding of the threshold.
-                if (deepest - threshold).abs() < 1e-9 {
-                    continue;
-                }
                 cases += 1;
-                let hit = thetas().find_map(|th| {
-                    deep_surface_sample(&sa.tree, &sb.tree, &pos, sb.tree.root, th, threshold)
-                });
-                assert_eq!(hit.is_some(), deepest > threshold, "{a}-{b} {threshold}");
-                if let Some(x) = hit {
-                    found += 1;
-                    assert!(exact_depth(&sa.tree, &x) > threshold);
+                let dir = Direction {
+                    outer: &sa.tree,
+                    inner: &sb.tree,
+                    pos: &pos,
+                    threshold,
+                };
+                match deep_point(&[dir], 1 << 20) {
+                    DeepPoint::Found { dir: 0, point } => {
+                        found += 1;
+                        assert!(exact_depth(&sa.tree, &point) > threshold, "{a}-{b}");
+                    }
+                    DeepPoint::Absent => {
+                        absent += 1;
+                        assert!(deepest <= threshold, "{a}-{b}: {deepest} > {threshold}");
+                    }
+                    // Only a surface whose deepest point is within rounding of the
+                    // threshold may keep the search refining until its budget.
+                    other => assert!(
+                        (deepest - threshold).abs() < 1e-9,
+                        "{a}-{b} {threshold}: {other:?} (deepest sample {deepest})"
+                    ),
                 }
             }
         }
     }
     // Both outcomes occur: the comparison can fail either way.
-    assert!(found > 0 && found < cases, "{found} of {cases}");
+    assert!(
+        found > 0 && absent > 0,
+        "{found} found, {absent} absent of {cases}"
+    );
 }
