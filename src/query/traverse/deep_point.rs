@@ -10,10 +10,11 @@
 //! angle `t` is at most the chord `2 rho sin(|t - t_mid| / 2)` from its lift at `t_mid`.
 //!
 //! **Bound.** The signed depth in the outer solid is 1-Lipschitz, so no point of the region
-//! is deeper than `depth(X) + R`, `X` the ball's centre. The depth of `X` is capped at
-//! `R + 2 threshold` ([`point_in_solid_capped`]): a capped depth is a lower bound inside and
-//! an upper bound outside, which keeps the rule sound (a region deeper than the cap is
-//! opened). Regions whose bound is at most the threshold hold no certificate and are
+//! is deeper than `depth(X) + R`, `X` the ball's centre. The depth of `X` is capped
+//! ([`point_in_solid_capped`], [`region_depth`]): a capped depth is a lower bound inside and
+//! an upper bound outside. Outside, the bound stays an upper bound; inside, a cap above the
+//! threshold keeps `min(depth, cap) + R` above the threshold, so such a region is never
+//! dropped (it is only visited later than its true bound would put it). Regions whose bound is at most the threshold hold no certificate and are
 //! dropped; the others are split (the larger of the meridian and angular radii halves) and
 //! visited deepest bound first, so a deep overlap is reached before the shallow band around
 //! a contact is refined.
@@ -36,6 +37,10 @@ use std::cell::Cell;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
+
+/// Largest region radius a centre's depth is capped at, as a fraction of the outer root
+/// disk's radius ([`region_depth`]).
+const CAP_FRACTION: f64 = 0.25;
 
 /// Angle intervals the search starts from, per direction (30 degrees each).
 const START_INTERVALS: usize = 12;
@@ -128,6 +133,26 @@ fn signed_depth(outer: &QueryTree, x: &Point3<f64>, cap: f64) -> f64 {
     }
 }
 
+/// Signed depth of a region's centre `x` in `outer`, capped at `radius + 2 threshold`
+/// (module doc), the radius first limited to [`CAP_FRACTION`] of the outer root disk's
+/// radius: a deep centre then no longer opens most of the outer tree (every piece is about
+/// equally far from it). Only a centre farther outside than that first cap, of a region
+/// wider than it (the top levels), is measured again with the full cap, which decides
+/// whether the region is dropped.
+fn region_depth(outer: &QueryTree, x: &Point3<f64>, radius: f64, threshold: f64) -> f64 {
+    let size = outer
+        .nodes
+        .get(outer.root as usize)
+        .map_or(0.0, |n| n.bound.radius);
+    let limited = radius.min(CAP_FRACTION * size);
+    let depth = signed_depth(outer, x, limited + 2.0 * threshold);
+    if limited < radius && depth <= -(limited + 2.0 * threshold) {
+        signed_depth(outer, x, radius + 2.0 * threshold)
+    } else {
+        depth
+    }
+}
+
 /// Best-first search over both directions for a certificate, at most `budget` depth
 /// evaluations.
 pub fn deep_point(dirs: &[Direction<'_>], budget: usize) -> DeepPoint {
@@ -140,7 +165,7 @@ pub fn deep_point(dirs: &[Direction<'_>], budget: usize) -> DeepPoint {
         let radius = r + angular_radius(m, r, t0, t1);
         let x = d.pos * lift(m, &e_rho(0.5 * (t0 + t1)));
         evaluations.set(evaluations.get() + 1);
-        let depth = signed_depth(d.outer, &x, radius + 2.0 * d.threshold);
+        let depth = region_depth(d.outer, &x, radius, d.threshold);
         if matches!(set, Meridian::Piece { .. }) && depth > d.threshold {
             return Some(x);
         }

@@ -80,10 +80,10 @@ fn surface_meridian_points(tree: &QueryTree) -> Vec<Point2<f64>> {
 /// Depth evaluations the branch and bound over both surfaces ([`deep_point`]) may spend when
 /// the cheap searches found no certificate and the traversal found the approximating
 /// surfaces meeting. Near a touching contact without overlap the search refines the band
-/// around the contact until its budget is spent (at about 0.6 us an evaluation); crossings
-/// whose overlap clears the certificate's threshold are found well within it (the campaign's
-/// corner crossings needed 201 and 707 evaluations, the latter 1.04 times the verification
-/// band deep). 4,096 cost 2.5 ms on each of 30 of the 2,000 tail-benchmark queries.
+/// around the contact until its budget is spent (0.8 ms on average over the 30 of the
+/// 2,000 tail-benchmark queries that spend it); crossings whose overlap clears the
+/// certificate's threshold are found well within it (the campaign's corner crossings needed
+/// 201 and 707 evaluations, the latter 1.04 times the verification band deep).
 const CROSSING_BUDGET: usize = 1024;
 
 /// The same budget when the approximating surfaces were not found meeting: each is then

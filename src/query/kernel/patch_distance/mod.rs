@@ -335,7 +335,7 @@ pub fn patch_distance_memo(
         if best.d > 0.0
             && pairs
                 .iter()
-                .any(|(p, q)| may_be_lens_extremum(a, b, pos_ab, p, q))
+                .any(|(p, q)| may_be_lens_extremum(a, b, pos_ab, &pos_ba, p, q))
         {
             sampled = true;
         }

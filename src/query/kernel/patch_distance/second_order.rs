@@ -94,7 +94,8 @@ fn eigen_range(m: &Matrix2<f64>) -> (f64, f64) {
     (half_trace - radius, half_trace + radius)
 }
 
-/// Whether the interior common normal `(p, q)` (A's frame; `q` on `b`, placed by `pos_ab`)
+/// Whether the interior common normal `(p, q)` (A's frame; `q` on `b`, placed by `pos_ab`,
+/// whose inverse is `pos_ba`)
 /// may be a local maximum of the distance from one patch's points to the other's surface
 /// (module docs), with the margin [`LENS_MARGIN`]. `true` for anything the test cannot
 /// decide (a pair of length 0, a surface point that is not smooth, a direction off the
@@ -103,6 +104,7 @@ pub(super) fn may_be_lens_extremum(
     a: &Patch,
     b: &Patch,
     pos_ab: &Isometry3<f64>,
+    pos_ba: &Isometry3<f64>,
     p: &Point3<f64>,
     q: &Point3<f64>,
 ) -> bool {
@@ -115,7 +117,7 @@ pub(super) fn may_be_lens_extremum(
     let Some((n_a, k_a)) = normal_and_shape(a, p) else {
         return true;
     };
-    let Some((n_b, k_b)) = normal_and_shape(b, &(pos_ab.inverse() * q)) else {
+    let Some((n_b, k_b)) = normal_and_shape(b, &(pos_ba * q)) else {
         return true;
     };
     let rot = pos_ab.rotation.to_rotation_matrix();
