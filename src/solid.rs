@@ -62,6 +62,8 @@ impl Solid {
         let mut tree = QueryTree::from_biarc_tree(&bt, profile.kind());
         tree.target_eps = tree.target_eps.max(eps);
         tree.convex = ConvexHullData::certify(&profile, &tree);
+        // Part of the build, not of the first query that needs it (overlap certificates).
+        tree.deep_interior();
         Ok(Solid::new(Arc::new(tree), Some(profile)))
     }
 

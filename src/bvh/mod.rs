@@ -6,8 +6,9 @@
 //! **What this level decides.** The shape of everything the query searches: which pieces
 //! (arcs and segments, [`patch`]), which disks and hulls bound them ([`hull`],
 //! [`crate::biarc::Disk`]), how the nodes nest ([`tree`]), whether the solid is a ball or a
-//! solid torus answered in closed form ([`offset_solid`]), and which points lie inside it
-//! ([`containment`]). It holds no pose: a tree lives in its solid's own frame.
+//! solid torus answered in closed form ([`offset_solid`]), which points lie inside it
+//! ([`containment`]) and which ball or solid torus lies deep inside it ([`inscribed`]). It
+//! holds no pose: a tree lives in its solid's own frame.
 //!
 //! **What it may call.** Only the levels below it: [`crate::biarc`] (the trees it copies),
 //! [`crate::profile`], [`crate::num`] and [`crate::tolerances`]. The solid
@@ -17,6 +18,7 @@
 pub mod containment;
 pub mod convex;
 pub mod hull;
+pub mod inscribed;
 pub mod offset_solid;
 pub mod patch;
 pub mod tree;

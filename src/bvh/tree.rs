@@ -6,6 +6,7 @@
 
 use super::convex::ConvexHullData;
 use super::hull::{HullRef, NodeHull, UpperHull};
+use super::inscribed::DeepInterior;
 use super::offset_solid::{detect, OffsetSolid};
 use super::patch::{Patch, ProfileArc};
 use crate::biarc::Disk;
@@ -13,6 +14,7 @@ use crate::biarc::{Arc as BiarcArc, BiarcTree};
 use crate::num::cross2;
 use crate::profile::ProfileKind;
 use nalgebra::{Point2, Vector2};
+use std::sync::OnceLock;
 
 /// Marker for "no child".
 pub const NO_CHILD: u32 = u32::MAX;
@@ -110,9 +112,29 @@ pub struct QueryTree {
     /// checks ask for it in every query that reaches an exact solve; a pass over the chain
     /// with nine sine/cosine pairs per piece was 1.5% of the query time at eps 1e-4).
     chain_orientation: f64,
+    /// [`QueryTree::deep_interior`], computed on first use.
+    deep: DeepCache,
+}
+
+/// A lazily computed [`DeepInterior`]: a function of the tree, so it takes no part in
+/// comparisons (a tree whose cache is filled equals one whose cache is not).
+#[derive(Debug, Clone, Default)]
+struct DeepCache(OnceLock<DeepInterior>);
+
+impl PartialEq for DeepCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl QueryTree {
+    /// Interior points of the solid with a large clearance, and the ball or solid torus
+    /// they span ([`super::inscribed`]), computed on first use (a 12 x 12 grid of
+    /// point-in-profile tests) and kept.
+    pub fn deep_interior(&self) -> &DeepInterior {
+        self.deep.0.get_or_init(|| DeepInterior::of(self))
+    }
+
     /// Balanced tree over consecutive leaves (profile order).
     ///
     /// # Panics
@@ -136,6 +158,7 @@ impl QueryTree {
             upper_hulls: Vec::new(),
             upper_start: u32::MAX,
             chain_orientation: 1.0,
+            deep: DeepCache::default(),
         };
         t.target_eps = t.eps;
         if !leaves.is_empty() {
@@ -207,6 +230,7 @@ impl QueryTree {
             upper_hulls: Vec::new(),
             upper_start: u32::MAX,
             chain_orientation: 1.0,
+            deep: DeepCache::default(),
         };
         let roots: Vec<u32> = bt
             .spirals()

@@ -10,7 +10,7 @@
 //! `lower = upper = 0`) only with a certificate: a point inside both true solids. When
 //! overlap can be neither certified nor excluded at the trees' accuracy, `lower = 0`.
 
-use super::overlap::{certify_overlap, nesting, Verdict};
+use super::overlap::{certify_overlap, inscribed_overlap, nesting, Verdict};
 use super::refine::refine_on_profiles;
 use super::search::{traverse, Budget, TraversalOptions, TraversalStats};
 use crate::bvh::QueryTree;
@@ -57,8 +57,10 @@ pub struct QueryOptions {
     pub bound: BoundKind,
     /// Refine the witness points on the exact NURBS surfaces (needs the profiles).
     pub refine: bool,
-    /// Answer pairs of balls and solid tori in closed form ([`crate::query::kernel::ball_torus`]); `false`
-    /// runs the traversal for them too (to measure it, or to compare the two).
+    /// Answer pairs of balls and solid tori in closed form ([`crate::query::kernel::ball_torus`]),
+    /// and overlapping solids whose inscribed balls or solid tori overlap
+    /// ([`crate::bvh::inscribed`]); `false` runs the traversal for them too (to measure it,
+    /// or to compare the two).
     pub closed_form: bool,
     /// Answer pairs of solids certified convex by GJK ([`crate::query::convex`]) when no
     /// refinement is asked for; `false` runs the traversal for them too.
@@ -214,6 +216,17 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
         let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);
         if let Some(r) = convex_distance(&a.tree, &b.tree, &pos_ab, slack, width) {
             return convex_result(a, &r);
+        }
+    }
+    // Nested, coincident and deeply overlapping solids: their inscribed balls or solid
+    // tori overlap, a closed form certifies it without the traversal.
+    if opts.closed_form {
+        if let Some(x) = inscribed_overlap(&a.tree, &b.tree, &pos_ab, slack) {
+            let stats = TraversalStats {
+                closed_forms: 1,
+                ..TraversalStats::default()
+            };
+            return overlap_result(a.pose * x, a.pose * x, stats);
         }
     }
     // The answer is widened by the rounding slack on both sides: the traversal stops that

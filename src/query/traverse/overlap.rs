@@ -22,9 +22,11 @@
 //! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::traverse::distance`]).
 
 use super::deep_point::{deep_point, DeepPoint, Direction};
-use crate::bvh::containment::{point_in_profile_capped, point_in_solid_capped};
+use crate::bvh::containment::point_in_solid_capped;
+use crate::bvh::offset_solid::{Core, OffsetSolid};
 use crate::bvh::patch::{e_rho, lift};
 use crate::bvh::QueryTree;
+use crate::query::kernel::ball_torus::offset_distance;
 use nalgebra::{Isometry3, Point2, Point3};
 use std::f64::consts::TAU;
 
@@ -32,24 +34,11 @@ use std::f64::consts::TAU;
 /// surface search, [`deep_point`], bounds every angle).
 const SAMPLE_THETAS: usize = 12;
 
-/// Interior points probed per axis of the profile's bounding box when looking for points
-/// with clearance (a 12 x 12 grid; the best few are kept).
-const CORE_GRID: usize = 12;
-
-/// Interior points with the largest clearance kept per solid.
-const CORE_POINTS: usize = 4;
-
 /// Cap of the margins a certificate compares with its threshold, in thresholds
-/// ([`point_in_profile_capped`]): any cap above the threshold gives the same comparisons
+/// ([`crate::bvh::containment::point_in_profile_capped`]): any cap above the threshold gives the same comparisons
 /// (the classification is exact, the margin exact below the cap); twice the threshold keeps
 /// the comparison clear of the cap itself.
 const CAP_OVER_THRESHOLD: f64 = 2.0;
-
-/// Cap of the clearances the interior grid ranks ([`core_meridian_points`]), as a fraction
-/// of the root disk's radius: grid points deeper than this are equally good seeds (well
-/// inside the solid, far above any eps), and their exact clearance would open most of the
-/// tree (every piece is about equally far from a central point).
-const CORE_CAP_FRACTION: f64 = 0.25;
 
 /// What the overlap analysis concluded.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,37 +87,6 @@ const FOCUS_PARAMS: usize = 9;
 /// Revolution angles for the focus leaf's samples.
 const FOCUS_THETAS: usize = 48;
 
-/// Interior meridian points with their clearance from the approximating chain, best first.
-fn core_meridian_points(tree: &QueryTree) -> Vec<(Point2<f64>, f64)> {
-    let Some(root) = tree.nodes.get(tree.root as usize) else {
-        return Vec::new();
-    };
-    let (c, r) = (root.bound.center, root.bound.radius);
-    let lo = Point2::new((c.x - r).max(0.0), c.y - r);
-    let hi = Point2::new(c.x + r, c.y + r);
-    let cap = CORE_CAP_FRACTION * r;
-    let mut found: Vec<(Point2<f64>, f64)> = Vec::new();
-    for i in 0..CORE_GRID {
-        for j in 0..CORE_GRID {
-            let fx = (i as f64 + 0.5) / CORE_GRID as f64;
-            let fy = (j as f64 + 0.5) / CORE_GRID as f64;
-            let m = Point2::new(lo.x + fx * (hi.x - lo.x), lo.y + fy * (hi.y - lo.y));
-            let inside = point_in_profile_capped(tree, m, cap);
-            if inside.inside {
-                found.push((m, inside.margin));
-            }
-        }
-    }
-    // Deepest first; among points at the cap, the nearest to the root disk's centre.
-    let centre = Point2::new(c.x, c.y);
-    found.sort_by(|x, y| {
-        y.1.total_cmp(&x.1)
-            .then((x.0 - centre).norm().total_cmp(&(y.0 - centre).norm()))
-    });
-    found.truncate(CORE_POINTS);
-    found
-}
-
 /// The meridian point `m` lifted at revolution angle `theta` (tree frame).
 fn lift_at(m: Point2<f64>, theta: f64) -> Point3<f64> {
     lift(m, &e_rho(theta))
@@ -162,7 +120,7 @@ fn overlap_point(
     // Interior points before the surface samples: a few hundred capped classifications
     // that certify coincident and nested solids at once, where the surface samples (every
     // lifted disk near the other surface, nothing skipped) visit the whole tree.
-    for (m, clearance) in core_meridian_points(inner) {
+    for &(m, clearance) in &inner.deep_interior().points {
         if clearance <= e_inner + slack {
             continue;
         }
@@ -363,6 +321,31 @@ pub fn certify_overlap(
                 DeepPoint::Absent | DeepPoint::Undecided => None,
             }
         })
+}
+
+/// Overlap certified before the traversal by the solids' inscribed balls or solid tori
+/// ([`crate::bvh::inscribed`]), answered in closed form ([`offset_distance`]): a point (A's
+/// frame) inside both true solids. Nested, coincident and deeply overlapping solids need
+/// no traversal; for solids whose inscribed solids' bounding spheres are apart it costs
+/// one distance between two points.
+pub fn inscribed_overlap(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+) -> Option<Point3<f64>> {
+    let ia = ta.deep_interior().inscribed?;
+    let ib = tb.deep_interior().inscribed?;
+    // Centre and radius of a sphere around an inscribed solid (its core on the axis).
+    let sphere = |o: &OffsetSolid| match o.core {
+        Core::Point { z } => (Point3::new(0.0, 0.0, z), o.radius),
+        Core::Circle { rho, z } => (Point3::new(0.0, 0.0, z), rho + o.radius),
+    };
+    let ((ca, ra), (cb, rb)) = (sphere(&ia), sphere(&ib));
+    if (pos_ab * cb - ca).norm() >= ra + rb {
+        return None;
+    }
+    offset_distance(&ia, &ib, pos_ab, slack).inside_both
 }
 
 /// Whether `inner`'s boundary is certainly outside `outer` (surfaces known to be apart):

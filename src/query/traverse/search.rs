@@ -62,7 +62,8 @@ pub struct TraversalStats {
     /// Largest queue length.
     pub max_queue: usize,
     /// Queries answered by the closed form for balls and solid tori ([`crate::query::kernel::ball_torus`]),
-    /// without a traversal.
+    /// or certified overlapping by the solids' inscribed balls and solid tori
+    /// ([`crate::bvh::inscribed`]), without a traversal.
     pub closed_forms: usize,
     /// Queries answered by the convex fast path ([`crate::query::convex`]), without a
     /// traversal.
