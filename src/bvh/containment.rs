@@ -101,7 +101,7 @@ pub fn point_in_profile_capped(tree: &QueryTree, m: Point2<f64>, cap: f64) -> In
 /// [`point_in_profile`] with the point of the approximating chain nearest to `m` (at
 /// distance `margin`): the classification, the margin and the foot of the margin come from
 /// one descent. The foot gives the direction in which the margin grows fastest, which the
-/// penetration depth's deepest-point search follows ([`crate::query::penetration`]).
+/// penetration depth's deepest-point search follows ([`mod@crate::query::penetration`]).
 pub fn point_in_profile_nearest(tree: &QueryTree, m: Point2<f64>) -> (Inside, Point2<f64>) {
     classify(tree, m, f64::INFINITY)
 }
@@ -196,6 +196,18 @@ pub fn point_in_solid(tree: &QueryTree, x: &Point3<f64>) -> Inside {
 /// [`point_in_solid`] with the margin capped at `cap` ([`point_in_profile_capped`]).
 pub fn point_in_solid_capped(tree: &QueryTree, x: &Point3<f64>, cap: f64) -> Inside {
     point_in_profile_capped(tree, Point2::new(x.x.hypot(x.y), x.z), cap)
+}
+
+/// Signed depth of `x` (the solid's frame): the margin inside, minus it outside, capped at
+/// `cap` on both sides ([`point_in_solid_capped`]), so a lower bound of the depth inside and
+/// an upper bound outside.
+pub fn signed_depth_capped(tree: &QueryTree, x: &Point3<f64>, cap: f64) -> f64 {
+    let c = point_in_solid_capped(tree, x, cap);
+    if c.inside {
+        c.margin
+    } else {
+        -c.margin
+    }
 }
 
 #[cfg(test)]

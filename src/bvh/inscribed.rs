@@ -34,7 +34,7 @@ const CAP_FRACTION: f64 = 0.25;
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct DeepInterior {
     /// Interior meridian points with their clearance from the approximating chain (capped at
-    /// [`CAP_FRACTION`] of the root disk's radius), deepest first; among points at the
+    /// a quarter of the root disk's radius), deepest first; among points at the
     /// cap, the nearest to the root disk's centre first.
     pub points: Vec<(Point2<f64>, f64)>,
     /// The ball or solid torus the deepest point spans, when its clearance exceeds the

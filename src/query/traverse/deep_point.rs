@@ -11,7 +11,7 @@
 //!
 //! **Bound.** The signed depth in the outer solid is 1-Lipschitz, so no point of the region
 //! is deeper than `depth(X) + R`, `X` the ball's centre. The depth of `X` is capped
-//! ([`point_in_solid_capped`], [`region_depth`]): a capped depth is a lower bound inside and
+//! ([`signed_depth_capped`], [`region_depth`]): a capped depth is a lower bound inside and
 //! an upper bound outside. Outside, the bound stays an upper bound; inside, a cap above the
 //! threshold keeps `min(depth, cap) + R` above the threshold, so such a region is never
 //! dropped (it is only visited later than its true bound would put it). Regions whose bound is at most the threshold hold no certificate and are
@@ -29,7 +29,7 @@
 //! stay above the threshold down to regions of about the threshold's size, so the search
 //! runs until its evaluation budget is spent and reports [`DeepPoint::Undecided`].
 
-use crate::bvh::containment::point_in_solid_capped;
+use crate::bvh::containment::signed_depth_capped;
 use crate::bvh::patch::{e_rho, lift};
 use crate::bvh::QueryTree;
 use nalgebra::{Isometry3, Point2, Point3};
@@ -123,16 +123,6 @@ fn angular_radius(centre: Point2<f64>, r: f64, t0: f64, t1: f64) -> f64 {
     2.0 * (centre.x.abs() + r) * (0.25 * (t1 - t0)).sin()
 }
 
-/// Signed depth of `x` in `outer`, capped at `cap` on both sides (module doc).
-fn signed_depth(outer: &QueryTree, x: &Point3<f64>, cap: f64) -> f64 {
-    let c = point_in_solid_capped(outer, x, cap);
-    if c.inside {
-        c.margin
-    } else {
-        -c.margin
-    }
-}
-
 /// Signed depth of a region's centre `x` in `outer`, capped at `radius + 2 threshold`
 /// (module doc), the radius first limited to [`CAP_FRACTION`] of the outer root disk's
 /// radius: a deep centre then no longer opens most of the outer tree (every piece is about
@@ -145,9 +135,9 @@ fn region_depth(outer: &QueryTree, x: &Point3<f64>, radius: f64, threshold: f64)
         .get(outer.root as usize)
         .map_or(0.0, |n| n.bound.radius);
     let limited = radius.min(CAP_FRACTION * size);
-    let depth = signed_depth(outer, x, limited + 2.0 * threshold);
+    let depth = signed_depth_capped(outer, x, limited + 2.0 * threshold);
     if limited < radius && depth <= -(limited + 2.0 * threshold) {
-        signed_depth(outer, x, radius + 2.0 * threshold)
+        signed_depth_capped(outer, x, radius + 2.0 * threshold)
     } else {
         depth
     }

@@ -22,7 +22,7 @@
 //! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::traverse::distance`]).
 
 use super::deep_point::{deep_point, DeepPoint, Direction};
-use crate::bvh::containment::point_in_solid_capped;
+use crate::bvh::containment::{point_in_solid_capped, signed_depth_capped};
 use crate::bvh::offset_solid::{Core, OffsetSolid};
 use crate::bvh::patch::{e_rho, lift};
 use crate::bvh::QueryTree;
@@ -135,17 +135,6 @@ fn overlap_point(
     None
 }
 
-/// Signed depth of `x` (outer's frame) in `outer`: the margin inside, minus it outside,
-/// each capped at `cap` ([`point_in_solid_capped`]).
-fn signed_depth(outer: &QueryTree, x: &Point3<f64>, cap: f64) -> f64 {
-    let c = point_in_solid_capped(outer, x, cap);
-    if c.inside {
-        c.margin
-    } else {
-        -c.margin
-    }
-}
-
 /// Pattern-search iterations of [`search_leaf`]'s ascent.
 const ASCENT_ITERS: usize = 400;
 
@@ -174,7 +163,7 @@ fn search_leaf(
     // (12,000 instructions a call with a cap of the leaf's size, 3,300 with this one).
     let (c, r) = (n.bound.center, n.bound.radius);
     let cap = CAP_OVER_THRESHOLD * threshold;
-    let depth = |k: usize, s: f64, th: f64| signed_depth(outer, &point(k, s, th), cap);
+    let depth = |k: usize, s: f64, th: f64| signed_depth_capped(outer, &point(k, s, th), cap);
     // The grid, evaluated once: a deep sample certifies at once, the deepest seeds an ascent.
     // Per angle, the leaf's disk lifted there is a ball of radius `r` holding that angle's
     // samples, whose depths are at most the centre's plus `r` (1-Lipschitz; capped depths
@@ -187,7 +176,7 @@ fn search_leaf(
         .map(|j| {
             let th = j as f64 * TAU / FOCUS_THETAS as f64;
             let centre = pos * lift_at(c, th);
-            (signed_depth(outer, &centre, cap + r) + r, th)
+            (signed_depth_capped(outer, &centre, cap + r) + r, th)
         })
         .collect();
     angles.sort_by(|x, y| y.0.total_cmp(&x.0));
