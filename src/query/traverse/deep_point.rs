@@ -20,7 +20,10 @@
 //! a contact is refined.
 //!
 //! **Certificate.** Only a point of an approximating surface certifies: the centre of a
-//! sub-arc region, lifted, deeper than the threshold. Node centres only guide.
+//! sub-arc region, lifted, deeper than the threshold, or, for a node region whose centre is
+//! deeper than the threshold plus its radius (every point of it is then deeper than the
+//! threshold), a patch midpoint under the node lifted at the middle angle, its depth
+//! measured again. Node centres themselves only guide.
 //!
 //! **Completeness.** If some surface point is deeper than `threshold + delta`, every region
 //! of radius below `delta / 2` around it has a centre deeper than the threshold, and no
@@ -117,6 +120,20 @@ fn meridian_ball(inner: &QueryTree, set: Meridian) -> (Point2<f64>, f64) {
     }
 }
 
+/// A meridian point of the approximating chain under node `id`: the midpoint of the first
+/// patch of its first leaf (inside the node's disk, which holds its pieces).
+fn node_surface_point(inner: &QueryTree, id: u32) -> Point2<f64> {
+    let mut n = &inner.nodes[id as usize];
+    while !n.is_leaf() {
+        n = &inner.nodes[n.children[0] as usize];
+    }
+    inner
+        .patches
+        .get(n.patch_start as usize)
+        .filter(|_| n.patch_start < n.patch_end)
+        .map_or(n.bound.center, |p| p.arc.point_at(0.5))
+}
+
 /// Angular radius of a region: how far its lift at any angle of `[t0, t1]` is from its lift
 /// at the middle angle (module doc).
 fn angular_radius(centre: Point2<f64>, r: f64, t0: f64, t1: f64) -> f64 {
@@ -158,6 +175,17 @@ pub fn deep_point(dirs: &[Direction<'_>], budget: usize) -> DeepPoint {
         let depth = region_depth(d.outer, &x, radius, d.threshold);
         if matches!(set, Meridian::Piece { .. }) && depth > d.threshold {
             return Some(x);
+        }
+        // Every point of the region is deeper than the threshold: one surface point of it
+        // certifies, without refining the region down to a sub-arc.
+        if let Meridian::Node(id) = set {
+            if depth - radius > d.threshold {
+                let y = d.pos * lift(node_surface_point(d.inner, id), &e_rho(0.5 * (t0 + t1)));
+                evaluations.set(evaluations.get() + 1);
+                if signed_depth_capped(d.outer, &y, 2.0 * d.threshold) > d.threshold {
+                    return Some(y);
+                }
+            }
         }
         let bound = depth + radius;
         if bound > d.threshold {
