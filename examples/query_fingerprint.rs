@@ -193,7 +193,7 @@ fn main() {
             paths[4] += opts.refine as usize;
             h.distance(&d);
             h.gradient(d.gradient(&Point3::from(pb.translation.vector)));
-            let limit = revdist::query::traverse::width_limit(&a, &b, &opts, &d);
+            let limit = revdist::query::width_limit(&a, &b, &opts, &d);
             h.word(limit as u64);
             // Near touching: B moved along the witnesses' direction to a chosen gap.
             let dir = d.point_b - d.point_a;
@@ -221,7 +221,7 @@ fn main() {
     }
 
     let mut h = Fnv::new();
-    for d in revdist::query::traverse::batch::distances(&batch_pairs, &QueryOptions::default()) {
+    for d in revdist::query::distances(&batch_pairs, &QueryOptions::default()) {
         queries += 1;
         h.distance(&d);
     }

@@ -5,7 +5,8 @@
 
 use nalgebra::{Isometry3, Point2, Point3, Translation3, UnitQuaternion, Vector3};
 use revdist::profile::ProfileKind;
-use revdist::query::{distance, ProfileArc, QueryOptions, QueryTree};
+use revdist::bvh::{ProfileArc, QueryTree};
+use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;

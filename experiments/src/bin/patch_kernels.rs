@@ -20,7 +20,7 @@ use experiments::table::Table;
 use experiments::{Draw, SplitMix};
 use nalgebra::{Isometry3, Point2, Translation3};
 use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
-use revdist::query::{Patch, ProfileArc};
+use revdist::bvh::{Patch, ProfileArc};
 use std::time::Instant;
 
 /// Gaps to contact.

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use nalgebra::{Isometry3, Vector3};
-use revdist::query::traverse::width_limit;
+use revdist::query::width_limit;
 use revdist::query::{signed_distance, try_distance, Distance, QueryOptions, SignedDistance};
 use revdist::request::{
     build_solid, check_eps, check_tolerance, pose_from_quaternion, query_options,

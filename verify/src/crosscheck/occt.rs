@@ -45,7 +45,7 @@ use super::report::{CaseContext, CaseRecord, Check};
 use crate::baselines::occt::{thread_cpu_time, OcctSolid, OCCT_TOLERANCE};
 use nalgebra::{Isometry3, Point3};
 use revdist::profile::Profile;
-use revdist::query::containment::point_in_solid;
+use revdist::bvh::containment::point_in_solid;
 use revdist::query::{distance, QueryOptions};
 use revdist::rng::SplitMix64;
 use revdist::solid::Solid;

@@ -19,7 +19,7 @@
 //! `e_a + e_b` decides it for all of B (same argument as above, with the outside case
 //! symmetric).
 //!
-//! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::traverse::distance`]).
+//! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::front::distance`]).
 
 use super::deep_point::{deep_point, DeepPoint, Direction};
 use crate::bvh::containment::{point_in_profile_capped, point_in_solid_capped};
