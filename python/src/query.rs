@@ -19,10 +19,9 @@ use numpy::{IntoPyArray, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use revdist::query::width_limit;
 use revdist::query::{
-    signed_distance, try_distance, try_distance_cached, Distance, QueryCache, QueryOptions,
-    SignedDistance,
+    signed_distance, try_distance, try_distance_cached, width_limit, Distance, QueryCache,
+    QueryOptions, SignedDistance,
 };
 use revdist::request::query_options;
 use revdist::solid::Solid;

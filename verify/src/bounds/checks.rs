@@ -10,6 +10,7 @@ use super::Bound;
 use nalgebra::{Isometry3, Vector3};
 use revdist::bvh::hull::NodeHull;
 use revdist::bvh::tree::Leaf;
+use revdist::bvh::{Patch, ProfileArc, QueryTree};
 use revdist::profile::ProfileKind;
 use revdist::query::bound::hull_bound::{hull_bound, hull_bound_until};
 use revdist::query::bound::node_pair::{
@@ -18,7 +19,6 @@ use revdist::query::bound::node_pair::{
 use revdist::query::search::leaf::patch_lower::{patch_lower, CoreMemo};
 use revdist::query::search::leaf::subdivision::{patch_lower_bound, CERTIFY_MAX_PAIRS};
 use revdist::query::search::leaf::LeafPair;
-use revdist::bvh::{Patch, ProfileArc, QueryTree};
 use revdist::query::{patch_distance, query_slack};
 use revdist::rng::SplitMix64;
 
