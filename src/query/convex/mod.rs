@@ -40,6 +40,10 @@
 //! the widening leaves of it, which also covers the witnesses' moves. When it cannot get
 //! there, or when the hulls meet without a certified common point, the path declines and the
 //! query traverses.
+//!
+//! **What it may call.** The convexity certificates, hull supports, nearest points and
+//! containment tests of [`crate::bvh`]; it answers with the query's
+//! [`crate::query::Certified`] (A's frame). Never the other paths or the front door.
 
 mod ball;
 pub mod gjk;

@@ -204,6 +204,19 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
             return r.placed(&a.pose);
         }
     }
+    search_path(a, b, &pos_ab, slack, opts, cache).placed(&a.pose)
+}
+
+/// The search's bounds on the boundary surfaces ([`traverse`]) made an answer for the
+/// solids (A's frame): the overlap or nesting verdict, then refinement when asked.
+fn search_path(
+    a: &Solid,
+    b: &Solid,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+    opts: &QueryOptions,
+    cache: &mut QueryCache,
+) -> Certified {
     // The answer is widened by the rounding slack on both sides: the traversal stops that
     // much narrower, so that `upper - lower` keeps within the requested width.
     let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);
@@ -218,10 +231,9 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
         budget: opts.budget,
         bound: opts.bound,
     };
-    let s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
+    let s = traverse(&a.tree, &b.tree, pos_ab, &topts, cache.last_pair);
     cache.last_pair = s.best_pair.or(cache.last_pair);
     let eps_sum = a.tree.eps + b.tree.eps;
-    let world = |p: &Point3<f64>| a.pose * p;
     let surface_lower = (s.lower - slack).max(0.0);
     let surface_upper = s.upper + slack;
 
@@ -238,7 +250,7 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
             certify_overlap(
                 &a.tree,
                 &b.tree,
-                &pos_ab,
+                pos_ab,
                 s.best_pair,
                 witness,
                 s.surfaces_meet,
@@ -249,10 +261,10 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
             None => Verdict::Undecided,
         }
     } else {
-        nesting(&a.tree, &b.tree, &pos_ab, &s.point_a, &s.point_b, slack)
+        nesting(&a.tree, &b.tree, pos_ab, &s.point_a, &s.point_b, slack)
     };
     let lower = match verdict {
-        Verdict::Overlap(x) => return Certified::overlap_at(world(&x), s.stats),
+        Verdict::Overlap(x) => return Certified::overlap_at(x, s.stats),
         Verdict::Apart => surface_lower,
         Verdict::Undecided => 0.0,
     };
@@ -260,7 +272,7 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     let (mut pa, mut pb) = (s.point_a, s.point_b);
     let mut value = s.approx;
     if opts.refine {
-        if let Some(r) = refine_on_profiles(a, b, &pos_ab, &pa, &pb) {
+        if let Some(r) = refine_on_profiles(a, b, pos_ab, &pa, &pb) {
             // Two points on the exact boundaries: their distance is an upper bound. A value
             // below the certified lower bound would contradict it; it is never used to move
             // the lower bound, and such a refinement is discarded.
@@ -276,8 +288,8 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
         value: value.clamp(lower, upper),
         lower,
         upper,
-        point_a: world(&pa),
-        point_b: world(&pb),
+        point_a: pa,
+        point_b: pb,
         overlap: false,
         stats: s.stats,
     }
