@@ -170,7 +170,7 @@ pub fn try_distance_cached(
 
 /// [`distance`] with a warm start from `cache`, which is updated.
 ///
-/// Solid semantics ([`crate::query::front::overlap`]): the traversal bounds the distance between the
+/// Solid semantics (`query/front/overlap.rs`): the search bounds the distance between the
 /// boundary surfaces; overlap is reported only with a certificate (a point inside both true
 /// solids); when overlap can be neither certified nor excluded, `lower = 0`.
 pub fn distance_cached(
