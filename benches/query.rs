@@ -129,8 +129,8 @@ fn bound_kinds(c: &mut Criterion) {
 /// contact: the exact patch distance with the sampled kernel, the binormal kernel, and the
 /// binormal kernel with the Gauss-map restriction (paper 3.3).
 fn patch_kernels(c: &mut Criterion) {
+    use revdist::bvh::{Patch, ProfileArc};
     use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
-    use revdist::query::{Patch, ProfileArc};
     let mut f = uniform(0x2545f4914f6cdd1d);
     let arc = |f: &mut dyn FnMut() -> f64| loop {
         let a = ProfileArc::Arc {
@@ -180,9 +180,9 @@ fn patch_kernels(c: &mut Criterion) {
     // bound.
     group.bench_function("stage1_bounds", |bench| {
         bench.iter(|| {
-            let mut memo = revdist::query::leaf::patch_lower::CoreMemo::default();
+            let mut memo = revdist::query::search::leaf::patch_lower::CoreMemo::default();
             for (a, b, pose) in &cases {
-                black_box(revdist::query::leaf::patch_upper::patch_bounds(
+                black_box(revdist::query::search::leaf::patch_upper::patch_bounds(
                     a, b, pose, &mut memo,
                 ));
             }

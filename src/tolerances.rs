@@ -3,7 +3,7 @@
 //!
 //! A certified interval is only as good as its rounding budget: every snap and every
 //! inclusive test of a kernel can move a candidate off the exact surfaces, and the query
-//! widens its interval by the sum ([`crate::query::traverse::distance::query_slack`]). The
+//! widens its interval by the sum ([`crate::query::query_slack`]). The
 //! two sums are [`POSE_SLACK_REL`] (terms that grow with the pose) and [`SIZE_SLACK_REL`]
 //! (terms that grow with the pieces); the tests below check, at compile time, that each covers its terms.
 //! The other constants are decision thresholds (when two axes count as one, when a fast path
@@ -11,7 +11,7 @@
 //! why it cannot make a bound wrong.
 //!
 //! This module sits below the solid's hierarchy ([`crate::bvh`]) because the patch snaps are
-//! applied when the tree is built; the query re-exports it as `query::tolerances`.
+//! applied when the tree is built.
 
 // ---------------------------------------------------------------------------------------
 // The query's rounding budget.

@@ -4,8 +4,9 @@
 //! dense 1-D sampling of the circle/circle distance refined by golden-section search).
 
 use nalgebra::{Isometry3, Point2, Point3, Translation3, UnitQuaternion, Vector3};
+use revdist::bvh::{ProfileArc, QueryTree};
 use revdist::profile::ProfileKind;
-use revdist::query::{distance, ProfileArc, QueryOptions, QueryTree};
+use revdist::query::{distance, QueryOptions};
 use revdist::solid::Solid;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;

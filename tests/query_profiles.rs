@@ -214,7 +214,7 @@ fn refinement_is_accurate_below_eps() {
 #[test]
 fn warm_starts_only_choose_the_first_leaf_pair() {
     use revdist::query::bound::BoundKind;
-    use revdist::query::traverse::{traverse, Budget, TraversalOptions};
+    use revdist::query::search::{traverse, Budget, TraversalOptions};
     let vase = Solid::from_profile(Arc::new(vase()), 1e-4).unwrap();
     let ring = Solid::from_profile(Arc::new(ring()), 1e-4).unwrap();
     let (ta, tb) = (&vase.tree, &ring.tree);
@@ -254,7 +254,7 @@ fn warm_starts_only_choose_the_first_leaf_pair() {
             );
             if what != "previous best" {
                 // Everything but the timings in the counters.
-                let same = |x: &revdist::query::traverse::SurfaceBounds| {
+                let same = |x: &revdist::query::search::SurfaceBounds| {
                     (
                         x.lower,
                         x.upper,

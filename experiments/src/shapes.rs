@@ -1,7 +1,7 @@
 //! The shapes the experiments use, by name, and facts about them the drivers need.
 
+use revdist::bvh::QueryTree;
 use revdist::profile::Profile;
-use revdist::query::QueryTree;
 
 /// The paper's five static models (section 5, Figure 7).
 pub const PAPER_MODELS: [&str; 5] = ["pawn", "cup", "bottle", "table", "lightmill"];

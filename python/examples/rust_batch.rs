@@ -1,5 +1,5 @@
 //! The Rust side of the Python package's overhead measurement (python/bench/overhead.py):
-//! the core's batch API (`revdist::query::traverse::batch::distances`) on N poses of two
+//! the core's batch API (`revdist::query::distances`) on N poses of two
 //! far-apart spheres (a closed-form answer of well under a microsecond, so that the time is
 //! almost all per-pose overhead), pairs built from the poses included, on 1 and 2 threads.
 //! Prints the best of `REPS` runs in microseconds per pose.
@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use revdist::models::model;
-use revdist::query::traverse::batch::distances;
+use revdist::query::distances;
 use revdist::query::QueryOptions;
 use revdist::solid::Solid;
 

@@ -22,7 +22,7 @@ fn _revdist(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solid::models, m)?)?;
     m.add_function(wrap_pyfunction!(solid::_solid_from_recipe, m)?)?;
     m.add("WIDTH_LIMITS", query::WIDTH_LIMIT_NAMES.to_vec())?;
-    m.add("DEFAULT_EPS", solid::DEFAULT_EPS)?;
+    m.add("DEFAULT_EPS", revdist::request::DEFAULT_EPS)?;
     m.add_function(wrap_pyfunction!(toi::time_of_impact, m)?)?;
     m.add("TOI_OUTCOMES", toi::OUTCOME_NAMES.to_vec())?;
     Ok(())

@@ -19,10 +19,9 @@ use numpy::{IntoPyArray, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use revdist::query::traverse::width_limit;
 use revdist::query::{
-    signed_distance, try_distance, try_distance_cached, Distance, QueryCache, QueryOptions,
-    SignedDistance,
+    signed_distance, try_distance, try_distance_cached, width_limit, Distance, QueryCache,
+    QueryOptions, SignedDistance,
 };
 use revdist::request::query_options;
 use revdist::solid::Solid;
@@ -31,7 +30,7 @@ use crate::errors::value_error;
 use crate::poses::{self, Poses};
 use crate::solid::PySolid;
 
-/// Names of `revdist::query::traverse::WidthLimit`, indexed by the codes of the
+/// Names of `revdist::query::WidthLimit`, indexed by the codes of the
 /// `width_limit_code` array (the command line's `"width_limit"` strings).
 pub const WIDTH_LIMIT_NAMES: [&str; 4] = ["met", "budget", "rounding", "leaves"];
 

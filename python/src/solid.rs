@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use revdist::models::{model, model_names};
 use revdist::profile::Profile;
-use revdist::request::{build_solid, check_eps, load_profile, read_profile_file};
+use revdist::request::{build_solid, check_eps, load_profile, read_profile_file, DEFAULT_EPS};
 use revdist::solid::Solid;
 use revdist::tessellate::{tessellate, TessellateOptions, VertexPlacement};
 
@@ -22,9 +22,6 @@ use crate::errors::{not_found, value_error};
 
 /// A mesh as numpy arrays: vertices (n, 3) and triangles (m, 3).
 type Mesh<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
-
-/// Default bound of the biarc trees, the command line's (`revdist distance --eps`).
-pub const DEFAULT_EPS: f64 = 1e-4;
 
 /// Tags of a pickled solid's recipe: `(MODEL_RECIPE, spec, eps)` or
 /// `(PIECES_RECIPE, spec, eps, profile name, pieces)`.

@@ -2,7 +2,7 @@
 //! circle centred on the axis) or a solid torus (a closed profile that is one full circle
 //! off the axis) is the set of points within `r` of its *core*, a point on the axis or a
 //! circle coaxial with it. The tree detects such a chain once, when it is built; the
-//! query answers pairs of them in closed form ([`crate::query::kernel::ball_torus`]).
+//! query answers pairs of them in closed form ([`crate::query::closed_form`]).
 //!
 //! Certification: the tree's approximating chain (biarcs) lies within the tree's `eps` of
 //! the true profile, and is detected to lie within `detect_error` of the circle (each arc's

@@ -87,7 +87,7 @@ pub struct QueryTree {
     /// to skip whole subtrees ([`super::containment`]).
     pub node_ends: Vec<Option<[Point2<f64>; 2]>>,
     /// The solid is a ball or a solid torus (the chain is one circle): queries between two
-    /// such solids take the closed form of [`crate::query::kernel::ball_torus`] instead of a traversal.
+    /// such solids take the closed form of [`crate::query::closed_form`] instead of a traversal.
     pub offset: Option<OffsetSolid>,
     /// The solid is certified convex (set by [`crate::solid::Solid::from_profile`], which
     /// has the exact profile): queries between two such solids take the convex fast path

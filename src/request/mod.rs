@@ -10,7 +10,7 @@ pub mod options;
 pub mod pose;
 pub mod spec;
 
-pub use options::{check_eps, check_tolerance, max_time, query_options, OptionError};
+pub use options::{check_eps, check_tolerance, max_time, query_options, OptionError, DEFAULT_EPS};
 pub use pose::{
     pose_from_matrix, pose_from_quaternion, unit_quaternion, PoseError, UNIT_QUATERNION_SLACK,
 };

@@ -20,6 +20,10 @@ pub enum OptionError {
     MaxTime { name: &'static str, value: f64 },
 }
 
+/// The trees' approximation bound when the caller names none: the command line's
+/// `distance` and `toi` (`--eps`) and the Python package's constructors.
+pub const DEFAULT_EPS: f64 = 1e-4;
+
 /// The approximation bound of a tree: positive and finite (its range relative to the
 /// profile's size is checked when the tree is built, `crate::limits`).
 pub fn check_eps(eps: f64) -> Result<f64, OptionError> {

@@ -82,7 +82,7 @@
 //! surface) or open with both ends on the axis (the region is closed by the axis segment,
 //! which revolves to a line, not a surface: the two ends become poles). Open profiles with an
 //! end off the axis are rejected by [`Profile::new`], so no caps are ever needed; this matches
-//! the query's containment (`crate::query::containment`). The mesh is oriented with outward
+//! the query's containment (`crate::bvh::containment`). The mesh is oriented with outward
 //! normals (positive signed volume) whichever way the profile runs, and is watertight: every
 //! directed edge appears once and its reverse once ([`TriMesh::topology`]). One `n_theta` for
 //! all rings keeps it free of T-junctions; creases need nothing special because consecutive

@@ -2,7 +2,7 @@
 //! found from the witnesses of an earlier query and carried along the motions, instead of
 //! a distance query at tolerance 0.
 //!
-//! **The argument** (the overlap certificate of [`crate::query::traverse::overlap`], with the
+//! **The argument** (the overlap certificate of `query/front/overlap.rs`, with the
 //! motion's rounding added). Let `e_X` be tree X's bound (X's true boundary lies within
 //! `e_X` of its approximating boundary, both ways) and `margin_X(y)` the distance of a point
 //! `y` of X's frame from X's approximating chain, revolved ([`point_in_solid_capped`]: the
@@ -23,7 +23,7 @@
 //!   witnesses are, carried rigidly with B) inside A with `margin_A(y) > e_A + e_B + 2 s`:
 //!   the ball of radius `e_B` about it holds a point of B's true boundary and lies inside
 //!   true A, so the solids overlap (the first certificate of
-//!   [`crate::query::traverse::overlap`]; the same with A and B swapped).
+//!   `query/front/overlap.rs`; the same with A and B swapped).
 //! * `D > 0`: `x_a` inside true A, `x_b` inside true B: `d(A, B) <= |x_a - x_b|`, so
 //!   `|x_a - x_b| + s <= D` certifies `d <= D` (`s` covers the rounding of the difference,
 //!   far below the pose slack).

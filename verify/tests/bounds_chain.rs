@@ -3,7 +3,8 @@
 //! pairs on 1,000 adversarial configurations, with no allowance beyond the bound's own slack.
 
 use nalgebra::{Isometry3, Point2, Quaternion, Translation3, UnitQuaternion};
-use revdist::query::{patch_distance, query_slack, Patch, ProfileArc};
+use revdist::bvh::{Patch, ProfileArc};
+use revdist::query::{patch_distance, query_slack};
 use verify::bounds::{checks::piece_pair_reference, run, Bound, Options};
 
 /// Configurations per bound in CI (the long mode runs 100,000: docs/verification.md).
@@ -161,7 +162,7 @@ fn assert_kernel_holds_at_contact(a: ProfileArc, b: ProfileArc, pos: &Isometry3<
     assert!(realised < 1e-12, "the construction meets: {realised}");
     let d = patch_distance(&Patch::new(a), &Patch::new(b), pos);
     let tree = |p: ProfileArc| {
-        revdist::query::QueryTree::from_leaves(
+        revdist::bvh::QueryTree::from_leaves(
             vec![revdist::bvh::tree::Leaf::new(vec![p], 0.0)],
             revdist::profile::ProfileKind::Closed,
         )

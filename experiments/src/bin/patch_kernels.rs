@@ -19,8 +19,8 @@ use experiments::driver::{self, DriverResult};
 use experiments::table::Table;
 use experiments::{Draw, SplitMix};
 use nalgebra::{Isometry3, Point2, Translation3};
+use revdist::bvh::{Patch, ProfileArc};
 use revdist::query::patch_distance::{patch_distance_with, Kernel, PatchOptions};
-use revdist::query::{Patch, ProfileArc};
 use std::time::Instant;
 
 /// Gaps to contact.

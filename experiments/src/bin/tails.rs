@@ -60,7 +60,7 @@ use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 use revdist::profile::Profile;
 use revdist::query::bound::node_pair::BoundKind;
-use revdist::query::traverse::{traverse, TraversalOptions};
+use revdist::query::search::{traverse, TraversalOptions};
 use revdist::query::{distance, try_distance, Budget, QueryOptions, Tolerance};
 use revdist::solid::Solid;
 use std::collections::{BTreeMap, HashMap};

@@ -12,19 +12,17 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use nalgebra::{Isometry3, Vector3};
-use revdist::query::traverse::width_limit;
-use revdist::query::{signed_distance, try_distance, Distance, QueryOptions, SignedDistance};
+use revdist::query::{
+    signed_distance, try_distance, width_limit, Distance, QueryOptions, SignedDistance,
+};
 use revdist::request::{
-    build_solid, check_eps, check_tolerance, pose_from_quaternion, query_options,
+    build_solid, check_eps, check_tolerance, pose_from_quaternion, query_options, DEFAULT_EPS,
 };
 use revdist::solid::Solid;
 use serde::{Deserialize, Serialize};
 
 use crate::input::load_profile;
 use crate::CmdResult;
-
-/// Default approximation bound of the biarc trees.
-const DEFAULT_EPS: f64 = 1e-4;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {

@@ -21,11 +21,8 @@ use serde::Serialize;
 use crate::distance::batch;
 use crate::distance::{parse_pose_flag, pose_from_json, PoseJson, SolidCache};
 use crate::CmdResult;
-use revdist::request::check_eps;
+use revdist::request::{check_eps, DEFAULT_EPS};
 use serde::Deserialize;
-
-/// Default approximation bound of the biarc trees (as `revdist distance`).
-const DEFAULT_EPS: f64 = 1e-4;
 
 #[derive(Debug, clap::Args)]
 pub struct Args {

@@ -34,7 +34,7 @@ pub enum BoundKind {
     Sphere,
     /// Sphere tests, then the hull and solid-torus bounds when the spheres do not prune
     /// (node pairs with a node over several spirals keep the sphere bound alone,
-    /// [`crate::query::traverse::search`]'s node keys).
+    /// [`crate::query::search`]'s node keys).
     #[default]
     Torus,
 }
@@ -103,7 +103,7 @@ fn axis_of(pos_ab: &Isometry3<f64>) -> Vector3<f64> {
 ///
 /// Exact for a spherical piece (`c_rho = 0`) whenever the other surface's point nearest to
 /// `c` sees the sphere inside the piece's range, e.g. a ball resting in a ring's hole,
-/// which touches along a whole circle: a continuum that [`crate::query::leaf::subdivision`] could only close
+/// which touches along a whole circle: a continuum that [`crate::query::search::leaf::subdivision`] could only close
 /// by thousands of torus bounds. `-inf` when neither piece is such an arc.
 pub fn shell_bound(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f64 {
     let one_side = |arc: &ProfileArc, other: &ProfileArc, to_other: &Isometry3<f64>| {
@@ -244,7 +244,7 @@ pub fn node_pair_bound(
     // points of the major circles do not already show that they cannot reach the level:
     // the key then stays the spheres' and hulls' (node keys order the search; measured,
     // the tori's sharper keys did not save node pairs, and with the traversal's first
-    // leaf from [`crate::query::traverse::search`]'s dive most node keys have a level).
+    // leaf from [`crate::query::search`]'s dive most node keys have a level).
     if torus_cannot_reach(da, db, pos_ab, prune_above) {
         return s;
     }

@@ -17,7 +17,7 @@
 //! exceeds the separation by more than the width and GJK takes over.
 
 use super::witness::nearest_surface_point;
-use super::{Bounds, ConvexAnswer, Method};
+use super::{Answer, Bounds, Method};
 use crate::bvh::offset_solid::Core;
 use crate::bvh::QueryTree;
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -31,7 +31,7 @@ pub(super) fn ball_distance(
     bounds: &Bounds,
     support_a: impl Fn(&Vector3<f64>) -> Point3<f64>,
     support_b: impl Fn(&Vector3<f64>) -> Point3<f64>,
-) -> Option<ConvexAnswer> {
+) -> Option<Answer> {
     let ball = |t: &QueryTree| match t.offset {
         Some(o) => match o.core {
             Core::Point { z } => Some((Point3::new(0.0, 0.0, z), o.radius)),

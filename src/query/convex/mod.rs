@@ -40,6 +40,10 @@
 //! the widening leaves of it, which also covers the witnesses' moves. When it cannot get
 //! there, or when the hulls meet without a certified common point, the path declines and the
 //! query traverses.
+//!
+//! **What it may call.** The convexity certificates, hull supports, nearest points and
+//! containment tests of [`crate::bvh`]; it answers with the query's
+//! [`crate::query::Certified`] (A's frame). Never the other paths or the front door.
 
 mod ball;
 pub mod gjk;
@@ -51,6 +55,7 @@ pub mod witness;
 use crate::bvh::containment::point_in_solid;
 use crate::bvh::convex::ConvexHullData;
 use crate::bvh::QueryTree;
+use crate::query::certified::{Certified, TraversalStats};
 use crate::tolerances::SETTLE_REL;
 use gjk::{Gjk, Status};
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -67,20 +72,25 @@ pub const GJK_ROUNDING_REL: f64 = 1e-13;
 /// narrower; beyond that the query traverses.
 const GJK_RESUMES: usize = 2;
 
-/// The fast path's answer, in A's frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ConvexAnswer {
-    pub value: f64,
-    pub lower: f64,
-    pub upper: f64,
-    pub point_a: Point3<f64>,
-    pub point_b: Point3<f64>,
-    /// The solids certainly overlap (`point_a = point_b` is inside both).
-    pub overlap: bool,
+/// How the convex path reached its answer: diagnostics for its tests and studies, not part
+/// of the answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Trace {
     /// GJK's simplex updates (0 for the ball path).
     pub iterations: usize,
     /// Which step found the witnesses.
     pub method: Method,
+}
+
+/// The path's answer (A's frame) and how it was reached.
+type Answer = (Certified, Trace);
+
+/// The counters of an answer of this path.
+fn path_stats() -> TraversalStats {
+    TraversalStats {
+        convex_paths: 1,
+        ..TraversalStats::default()
+    }
 }
 
 /// Which step of the convex path found the answer's witnesses.
@@ -95,15 +105,26 @@ pub enum Method {
 }
 
 /// The distance between the convex solids of trees `ta` (at the identity) and `tb` (at
-/// `pos_ab`), with interval width at most `requested_width` or the traversal's floor (module
-/// doc); `None` when the path declines.
+/// `pos_ab`), certified in A's frame, with interval width at most `requested_width` or the
+/// traversal's floor (module doc); `None` when the path declines.
 pub fn convex_distance(
     ta: &QueryTree,
     tb: &QueryTree,
     pos_ab: &Isometry3<f64>,
     slack: f64,
     requested_width: f64,
-) -> Option<ConvexAnswer> {
+) -> Option<Certified> {
+    convex_distance_traced(ta, tb, pos_ab, slack, requested_width).map(|(answer, _)| answer)
+}
+
+/// [`convex_distance`] with how it reached its answer.
+pub fn convex_distance_traced(
+    ta: &QueryTree,
+    tb: &QueryTree,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+    requested_width: f64,
+) -> Option<Answer> {
     let (ca, cb) = (ta.convex.as_ref()?, tb.convex.as_ref()?);
     let scale = 1.0 + pos_ab.translation.vector.norm() + ca.support.extent + cb.support.extent;
     let widen = ca.error + cb.error + slack + GJK_ROUNDING_REL * scale;
@@ -289,7 +310,7 @@ impl Bounds {
         upper_hulls: f64,
         iterations: usize,
         method: Method,
-    ) -> Option<ConvexAnswer> {
+    ) -> Option<Answer> {
         let value = (point_a - point_b).norm();
         // `value` is a distance between points of the approximating solids, which lie in the
         // hulls: `lower <= d(H_A, H_B) <= value`. It exceeds the approximations' distance by
@@ -299,16 +320,18 @@ impl Bounds {
         // Any number above an upper bound is one; any number below a lower bound is one.
         let lower = (lower_hulls - self.widen).max(0.0).min(value);
         let upper = (upper_hulls.min(value) + self.widen).max(value);
-        (fits && upper - lower <= self.allowed).then_some(ConvexAnswer {
-            value,
-            lower,
-            upper,
-            point_a,
-            point_b,
-            overlap: false,
-            iterations,
-            method,
-        })
+        (fits && upper - lower <= self.allowed).then_some((
+            Certified {
+                value,
+                lower,
+                upper,
+                point_a,
+                point_b,
+                overlap: false,
+                stats: path_stats(),
+            },
+            Trace { iterations, method },
+        ))
     }
 
     /// The answer from a rim of A or B ([`rims`], [`rim`]): the rim point nearest to the
@@ -324,7 +347,7 @@ impl Bounds {
         support_a: &impl Fn(&Vector3<f64>) -> Point3<f64>,
         support_b: &impl Fn(&Vector3<f64>) -> Point3<f64>,
         r: &gjk::GjkResult,
-    ) -> Option<ConvexAnswer> {
+    ) -> Option<Answer> {
         let rim = |k: usize| {
             found[k].map(
                 |RimStart {
@@ -374,7 +397,7 @@ impl Bounds {
         tb: &QueryTree,
         pos_ab: &Isometry3<f64>,
         r: &gjk::GjkResult,
-    ) -> Option<ConvexAnswer> {
+    ) -> Option<Answer> {
         let (point_a, point_b) = surface_witnesses(ta, tb, pos_ab, r);
         self.finish(
             point_a,
@@ -474,7 +497,7 @@ fn certified_overlap(
     slack: f64,
     r: &gjk::GjkResult,
     centers: [Point3<f64>; 2],
-) -> Option<ConvexAnswer> {
+) -> Option<Answer> {
     let inside = |t: &QueryTree, p: &Point3<f64>| {
         let c = point_in_solid(t, p);
         c.inside && c.margin > t.eps + slack
@@ -495,14 +518,11 @@ fn certified_overlap(
     let found = candidates
         .into_iter()
         .find(|p| inside(ta, p) && inside(tb, &pos_ab.inverse_transform_point(p)))?;
-    Some(ConvexAnswer {
-        value: 0.0,
-        lower: 0.0,
-        upper: 0.0,
-        point_a: found,
-        point_b: found,
-        overlap: true,
-        iterations: r.iterations,
-        method: Method::Gjk,
-    })
+    Some((
+        Certified::overlap_at(found, path_stats()),
+        Trace {
+            iterations: r.iterations,
+            method: Method::Gjk,
+        },
+    ))
 }

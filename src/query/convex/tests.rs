@@ -6,7 +6,7 @@ use crate::bvh::convex::certify_convex;
 use crate::models::{model, model_names, primitives::bezier};
 use crate::nurbs::NurbsCurve;
 use crate::profile::Profile;
-use crate::query::traverse::distance::{distance, query_slack, QueryOptions, Tolerance};
+use crate::query::front::distance::{distance, query_slack, QueryOptions, Tolerance};
 use crate::solid::Solid;
 use crate::test_rng::SplitMix64;
 use nalgebra::{Isometry3, Point2, Translation3, UnitQuaternion, Vector3};
@@ -187,14 +187,14 @@ fn probe_freeform() {
                 t_off += t0.elapsed().as_secs_f64();
                 used += d.stats.convex_paths;
                 n += 1;
-                if let Some(r) = super::convex_distance(
+                if let Some((_, trace)) = super::convex_distance_traced(
                     &a.tree,
                     &bp.tree,
                     &a.relative_pose(&bp),
                     1e-11,
                     Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps),
                 ) {
-                    iters += r.iterations;
+                    iters += trace.iterations;
                 }
             }
             if n == 20 {
@@ -226,9 +226,10 @@ fn probe_close_iterations() {
             };
             let width = Tolerance::Trees.width(a.tree.target_eps, b.tree.target_eps);
             let t0 = std::time::Instant::now();
-            let r = super::convex_distance(&a.tree, &b.tree, &pose, 1e-11, width).unwrap();
+            let (_, trace) =
+                super::convex_distance_traced(&a.tree, &b.tree, &pose, 1e-11, width).unwrap();
             total_ns += t0.elapsed().as_nanos() as f64;
-            *hist.entry(r.iterations).or_insert(0) += 1;
+            *hist.entry(trace.iterations).or_insert(0) += 1;
         }
         println!(
             "{}-{}: {:.0} ns, iterations {hist:?}",
@@ -894,7 +895,9 @@ fn ball_path_answers_close_poses_and_leaves_overlaps_to_gjk() {
             let reference = distance(a, &bp, &traversal_exact());
             let label = format!("{na}-{nb} pose {k} gap {gap:e}");
             total += 1;
-            let Some(r) = super::convex_distance(&a.tree, &bp.tree, &pos_ab, slack, width) else {
+            let Some((r, trace)) =
+                super::convex_distance_traced(&a.tree, &bp.tree, &pos_ab, slack, width)
+            else {
                 assert!(gap < 0.0 || name == "sphere", "{label}: declined");
                 continue;
             };
@@ -910,7 +913,7 @@ fn ball_path_answers_close_poses_and_leaves_overlaps_to_gjk() {
                 assert!(r.overlap || r.lower == 0.0, "{label}: answered apart");
                 continue;
             }
-            planar += (r.method == super::Method::Ball) as usize;
+            planar += (trace.method == super::Method::Ball) as usize;
             assert!(!r.overlap && r.upper - r.lower <= width, "{label}: {r:?}");
             let w = (r.point_a - r.point_b).norm();
             assert!((w - r.value).abs() <= 1e-14, "{label}: witnesses");
@@ -952,11 +955,12 @@ fn rim_answers_hold_the_traversals_distance() {
                     names[i], names[j]
                 );
                 total += 1;
-                let Some(r) = super::convex_distance(&a.tree, &bp.tree, &pos_ab, slack, width)
+                let Some((r, trace)) =
+                    super::convex_distance_traced(&a.tree, &bp.tree, &pos_ab, slack, width)
                 else {
                     continue;
                 };
-                if r.method != super::Method::Rim {
+                if trace.method != super::Method::Rim {
                     continue;
                 }
                 by_rim += 1;

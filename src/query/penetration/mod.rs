@@ -32,7 +32,7 @@
 //! ([`crate::bvh::containment`]). The certified bound is
 //! `(m_A - e_A - slack) + (m_B - e_B - slack)`, both terms positive, `slack` the query's
 //! rounding budget ([`crate::query::query_slack`]), the same discipline as the overlap
-//! certificate ([`crate::query::traverse::overlap`]). The search for the point
+//! certificate (`query/front/overlap.rs`). The search for the point
 //! ([`deepest`]) is a local ascent: a point it finds is a certificate however it was found,
 //! and a missed better point only makes the bound weaker.
 //!

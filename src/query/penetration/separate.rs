@@ -13,8 +13,8 @@
 //! overshoot). A direction is abandoned once its translations are no shorter than the best
 //! upper bound so far.
 
-use crate::query::traverse::distance::{distance, query_slack, Distance, QueryOptions};
-use crate::query::traverse::search::Budget;
+use crate::query::front::distance::{distance, query_slack, Distance, QueryOptions};
+use crate::query::search::Budget;
 use crate::solid::Solid;
 use nalgebra::{Isometry3, Point3, Translation3, Vector3};
 use std::time::Instant;

@@ -4,11 +4,11 @@
 
 use super::deepest::Pair;
 use super::separate::Search;
-use crate::query::traverse::distance::{
+use crate::query::front::distance::{
     check_query, distance, query_slack, Distance, QueryError, QueryOptions, Tolerance,
 };
-use crate::query::traverse::gradient::Gradient;
-use crate::query::traverse::search::Budget;
+use crate::query::front::gradient::Gradient;
+use crate::query::search::Budget;
 use crate::solid::Solid;
 use nalgebra::{Point3, Vector3};
 use std::time::Instant;

@@ -4,7 +4,7 @@
 //! the reference ([`super::exact`]) re-evaluates the same parameters in MPFR.
 
 use nalgebra::{Isometry3, Point2, Point3, Vector2, Vector3};
-use revdist::query::ProfileArc;
+use revdist::bvh::ProfileArc;
 use std::f64::consts::TAU;
 
 /// A point of a revolved chain: piece index, normalised parameter `s` in [0, 1] along the

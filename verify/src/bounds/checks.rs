@@ -10,15 +10,16 @@ use super::Bound;
 use nalgebra::{Isometry3, Vector3};
 use revdist::bvh::hull::NodeHull;
 use revdist::bvh::tree::Leaf;
+use revdist::bvh::{Patch, ProfileArc, QueryTree};
 use revdist::profile::ProfileKind;
 use revdist::query::bound::hull_bound::{hull_bound, hull_bound_until};
 use revdist::query::bound::node_pair::{
     node_pair_bound, shell_bound, slab_bound, sphere_bound, torus_bound, BoundKind,
 };
-use revdist::query::leaf::patch_lower::{patch_lower, CoreMemo};
-use revdist::query::leaf::subdivision::{patch_lower_bound, CERTIFY_MAX_PAIRS};
-use revdist::query::leaf::LeafPair;
-use revdist::query::{patch_distance, query_slack, Patch, ProfileArc, QueryTree};
+use revdist::query::search::leaf::patch_lower::{patch_lower, CoreMemo};
+use revdist::query::search::leaf::subdivision::{patch_lower_bound, CERTIFY_MAX_PAIRS};
+use revdist::query::search::leaf::LeafPair;
+use revdist::query::{patch_distance, query_slack};
 use revdist::rng::SplitMix64;
 
 /// Realised pairs of a piece pair evaluated in MPFR (the best of the search).

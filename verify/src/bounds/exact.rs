@@ -13,7 +13,7 @@
 
 use super::chain::SurfacePoint;
 use nalgebra::Isometry3;
-use revdist::query::ProfileArc;
+use revdist::bvh::ProfileArc;
 use rug::Float;
 
 /// Bits of every MPFR number (the brief asks for at least 200).

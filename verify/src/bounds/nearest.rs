@@ -13,7 +13,7 @@
 
 use super::chain::{closest_on_chain, point, Pair, SurfacePoint};
 use nalgebra::Isometry3;
-use revdist::query::ProfileArc;
+use revdist::bvh::ProfileArc;
 use std::f64::consts::TAU;
 
 /// Grid of one piece: parameter samples (ends included) and revolution angles.

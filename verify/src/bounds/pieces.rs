@@ -14,7 +14,7 @@
 use super::chain::{lift_vector, planar_normal, Pair, SurfacePoint};
 use crate::contact;
 use nalgebra::{Isometry3, Point2, Translation3, UnitQuaternion, Vector2, Vector3};
-use revdist::query::ProfileArc;
+use revdist::bvh::ProfileArc;
 use revdist::rng::SplitMix64;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 

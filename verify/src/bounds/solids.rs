@@ -1,5 +1,5 @@
 //! Whole-solid configurations for the two links of the chain that answer without the
-//! traversal: the closed forms of balls and solid tori (`query/kernel/ball_torus.rs`) and the
+//! traversal: the closed forms of balls and solid tori (`query/closed_form/mod.rs`) and the
 //! convex path's certified interval (`query/convex/`, GJK's dual bound). Each configuration
 //! is two primitive solids drawn with random proportions at a scale log-uniform in
 //! [1e-3, 1e3], built from exact NURBS profiles, and B's pose: mostly a contact of two
@@ -24,10 +24,11 @@ use super::Bound;
 use crate::contact;
 use nalgebra::{Isometry3, Point2, Vector3};
 use revdist::bvh::containment::point_in_solid;
+use revdist::bvh::ProfileArc;
 use revdist::models::primitives::{arc, deg, line, pt};
 use revdist::nurbs::NurbsCurve;
 use revdist::profile::Profile;
-use revdist::query::{distance, ProfileArc, QueryOptions};
+use revdist::query::{distance, QueryOptions};
 use revdist::rng::SplitMix64;
 use revdist::solid::Solid;
 use std::f64::consts::{FRAC_PI_2, TAU};

@@ -9,7 +9,7 @@ use super::report::{CaseContext, CaseRecord, Check, Report};
 use super::shapes::{prepare, scale, Prepared};
 use crate::baselines::fcl::{Bv, FclMesh};
 use nalgebra::{Isometry3, Point3};
-use revdist::query::containment::point_in_solid;
+use revdist::bvh::containment::point_in_solid;
 use revdist::query::{distance, QueryOptions};
 use revdist::rng::SplitMix64;
 use std::collections::HashMap;

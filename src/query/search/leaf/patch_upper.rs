@@ -61,7 +61,7 @@ pub fn polish(
 }
 
 /// A realised upper bound of a patch pair alone, without a lower bound (a cold query's
-/// first leaf pair, [`crate::query::traverse::search`]): the pieces' points projected from the arcs' tori's
+/// first leaf pair, [`crate::query::search`]): the pieces' points projected from the arcs' tori's
 /// near points (one circle/circle minimum, memoised for the pair's later stage 1), or, with
 /// a straight piece, from the pieces' mid points and the hulls' nearest points after a few
 /// support points ([`crate::query::bound::hull_bound::UNBOUNDED_ITERATIONS`]; a converged iteration cost twice

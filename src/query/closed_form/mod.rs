@@ -16,10 +16,15 @@
 //! the offset surface, and the true solid contains the core's offset by `r - h` and lies in
 //! its offset by `r + h` (the profile curve winds once about the circle's centre). The
 //! distance between the true solids is therefore within `h_a + h_b` of the closed form.
+//!
+//! **What it may call.** The cores of [`crate::bvh::offset_solid`], the circle distances of
+//! [`crate::circle`] and the parallel circles of [`crate::query::angles`]; it answers with
+//! the query's [`Certified`] type. Never the other paths or the front door.
 
 use crate::bvh::offset_solid::{Core, OffsetSolid};
 use crate::circle::{min_distance, point_circle_distance};
 use crate::query::angles::common_normals::parallel_circle;
+use crate::query::certified::{Certified, TraversalStats};
 use nalgebra::{Isometry3, Point3, Vector3};
 
 /// Closest points of two cores (A's frame; B placed by `pos_ab`) and their distance.
@@ -49,31 +54,19 @@ fn core_distance(a: &Core, b: &Core, pos_ab: &Isometry3<f64>) -> (f64, Point3<f6
     }
 }
 
-/// The closed-form answer for two offset solids (A's frame).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct OffsetDistance {
-    /// Certified bounds of the distance between the true solids (before the caller's
-    /// rounding slack).
-    pub lower: f64,
-    pub upper: f64,
-    /// Distance between the offset surfaces (`core distance - radii`, 0 when they meet).
-    pub value: f64,
-    /// Closest points of the offset surfaces.
-    pub point_a: Point3<f64>,
-    pub point_b: Point3<f64>,
-    /// A point inside both true solids, when the offsets overlap by more than `slack`
-    /// plus both errors.
-    pub inside_both: Option<Point3<f64>>,
-}
-
-/// Distance between two offset solids; `slack` is the caller's rounding slack (it covers
-/// the circle solver's relative error, [`crate::tolerances::POSE_SLACK_REL`]).
+/// Distance between two offset solids, certified (A's frame); `slack` is the caller's
+/// rounding slack (it covers the circle solver's relative error,
+/// [`crate::tolerances::POSE_SLACK_REL`]). Overlap only with a point inside both true
+/// solids (the offsets overlap by more than `slack` plus both errors); `lower = 0` in the
+/// band around touching where neither overlap nor separation is certain. The value is the
+/// distance between the offset surfaces (`core distance - radii`, 0 when they meet), and
+/// the witnesses their closest points.
 pub fn offset_distance(
     a: &OffsetSolid,
     b: &OffsetSolid,
     pos_ab: &Isometry3<f64>,
     slack: f64,
-) -> OffsetDistance {
+) -> Certified {
     let (d_core, ca, cb) = core_distance(&a.core, &b.core, pos_ab);
     let dir = if d_core > 0.0 {
         (cb - ca) / d_core
@@ -104,13 +97,22 @@ pub fn offset_distance(
         let x = ca + dir * (0.5 * (a.radius - b.radius + d_core)).clamp(0.0, d_core);
         (x, x)
     };
-    OffsetDistance {
-        lower: (value - h).max(0.0),
-        upper: (value + h).max(0.0),
-        value: value.max(0.0),
+    let stats = TraversalStats {
+        closed_forms: 1,
+        ..TraversalStats::default()
+    };
+    if let Some(x) = inside_both {
+        return Certified::overlap_at(x, stats);
+    }
+    let (lower, upper) = ((value - h).max(0.0), (value + h).max(0.0));
+    Certified {
+        value: value.max(0.0).clamp(lower, upper),
+        lower,
+        upper,
         point_a,
         point_b,
-        inside_both,
+        overlap: false,
+        stats,
     }
 }
 
@@ -166,7 +168,7 @@ mod tests {
             let shift = centre - rot * Vector3::new(0.0, 0.0, 1.0);
             let pos = Isometry3::from_parts(Translation3::from(shift), rot);
             let r = offset_distance(&a, &b, &pos, 1e-9);
-            assert!(r.inside_both.is_none() && r.value == 0.0, "{depth}: {r:?}");
+            assert!(!r.overlap && r.value == 0.0, "{depth}: {r:?}");
             assert_eq!(r.point_a, r.point_b);
             let on_a = (r.point_a.coords.norm() - 3.5).abs();
             let on_b = ((r.point_b.coords - centre).norm() - 3.5).abs();
@@ -347,7 +349,8 @@ mod tests {
         // Ball centred on the torus core circle: deep overlap.
         let pos = Isometry3::translation(1.0, 0.0, 0.0);
         let r = offset_distance(&a, &b, &pos, 1e-12);
-        let x = r.inside_both.unwrap();
+        assert!(r.overlap);
+        let x = r.point_a;
         let to_core_a = (x.coords.xy().norm() - 1.0).hypot(x.z);
         let to_core_b = (x - Point3::new(1.0, 0.0, 0.0)).norm();
         assert!(to_core_a <= 0.25 - 1e-3 && to_core_b <= 0.3 - 1e-3);
@@ -356,7 +359,7 @@ mod tests {
         let pos = Isometry3::translation(0.0, 0.0, 0.0);
         let b2 = OffsetSolid { radius: 0.75, ..b };
         let r = offset_distance(&a, &b2, &pos, 1e-12);
-        assert!(r.inside_both.is_none());
+        assert!(!r.overlap);
         assert!(r.lower == 0.0 && r.upper >= 2e-3 && r.upper < 2.1e-3);
     }
 }

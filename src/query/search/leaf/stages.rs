@@ -2,13 +2,13 @@
 //! `docs/performance.md`).
 //!
 //! * **Stage 1, bounds** ([`LeafPair::bounds`]): for every patch pair of the two leaves, the
-//!   cheap lower bound and realised upper bound of [`crate::query::leaf::patch_lower`] (one circle/circle
+//!   cheap lower bound and realised upper bound of [`crate::query::search::leaf::patch_lower`] (one circle/circle
 //!   minimum each). When every pair is *settled* (its upper bound is within
 //!   [`SETTLE_REL`] of its lower bound, or its lower bound already reaches the caller's
 //!   pruning level) the leaf pair is done: the interval is as tight as an exact solve would
 //!   make it.
 //! * **Stage 2, exact** ([`LeafPair::exact`]): the exact patch distance of
-//!   [`mod@crate::query::kernel::patch_distance`] for the pairs stage 1 could not settle, with interpenetration
+//!   [`mod@crate::query::search::kernel::patch_distance`] for the pairs stage 1 could not settle, with interpenetration
 //!   checks of the interior common normals. The traversal asks for it only when the leaf
 //!   pair is still the one that holds the query's lower bound.
 //!
@@ -23,7 +23,7 @@ use crate::bvh::patch::Patch;
 use crate::bvh::tree::QueryTree;
 use crate::query::bound::hull_bound::hull_bound_until;
 use crate::query::bound::node_pair::sphere_bound;
-use crate::query::kernel::patch_distance::{
+use crate::query::search::kernel::patch_distance::{
     patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions,
 };
 use crate::tolerances::SETTLE_REL;

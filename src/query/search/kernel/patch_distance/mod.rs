@@ -33,7 +33,7 @@
 //! here (intersecting major circles, non-coaxial continua of binormals), the critical angles
 //! come from the sampled scan of [`crate::query::angles::radial_field`] and [`PatchDistance::sampled`] is set: the
 //! distance is then a realised pair (an upper bound) and the caller bounds the pair from
-//! below by subdivision ([`crate::query::leaf::subdivision`]). The continua with a closed form are exact:
+//! below by subdivision ([`crate::query::search::leaf::subdivision`]). The continua with a closed form are exact:
 //! coaxial circles (constant distance), a circle parallel to a flat annulus, a sphere centre
 //! on the other patch's axis.
 //!
@@ -94,7 +94,7 @@ pub struct PatchDistance {
     pub interior_pairs: Vec<(Point3<f64>, Point3<f64>)>,
     /// Some candidates came from a sampled scan ([`crate::query::angles::radial_field`]): `distance` is then only an
     /// upper bound of the patch distance (two real surface points), and a lower bound must
-    /// come from elsewhere ([`crate::query::leaf::subdivision`]).
+    /// come from elsewhere ([`crate::query::search::leaf::subdivision`]).
     pub sampled: bool,
 }
 

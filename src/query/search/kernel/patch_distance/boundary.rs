@@ -45,7 +45,7 @@ fn parallel_torus_fast(
 /// A lower bound of the distance from the boundary parallel `e` (frame G, placed in O's
 /// frame by `pos_og`) to the patch `o`, from circle/circle minima only: the parallel against
 /// the solid torus of the disk around `o`'s piece and, for an arc, of the arc's own circle
-/// (both contain the patch; [`crate::query::bound::node_pair`] and [`crate::query::leaf::patch_lower`] give the proofs),
+/// (both contain the patch; [`crate::query::bound::node_pair`] and [`crate::query::search::leaf::patch_lower`] give the proofs),
 /// after the closed-form hull bound of [`crate::query::bound::hull_bound::hull_bound`].
 /// Returns early once a bound reaches `enough`. A parallel that is a point gets no bound
 /// (its exact distance is cheaper).

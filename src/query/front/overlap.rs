@@ -19,14 +19,14 @@
 //! `e_a + e_b` decides it for all of B (same argument as above, with the outside case
 //! symmetric).
 //!
-//! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::traverse::distance`]).
+//! Every margin comparison adds the query's rounding slack (see [`mod@crate::query::front::distance`]).
 
 use super::deep_point::{deep_point, DeepPoint, Direction};
 use crate::bvh::containment::{point_in_solid_capped, signed_depth_capped};
 use crate::bvh::offset_solid::{Core, OffsetSolid};
 use crate::bvh::patch::{e_rho, lift};
 use crate::bvh::QueryTree;
-use crate::query::kernel::ball_torus::offset_distance;
+use crate::query::closed_form::offset_distance;
 use nalgebra::{Isometry3, Point2, Point3};
 use std::f64::consts::TAU;
 
@@ -334,7 +334,8 @@ pub fn inscribed_overlap(
     if (pos_ab * cb - ca).norm() >= ra + rb {
         return None;
     }
-    offset_distance(&ia, &ib, pos_ab, slack).inside_both
+    let answer = offset_distance(&ia, &ib, pos_ab, slack);
+    answer.overlap.then_some(answer.point_a)
 }
 
 /// Whether `inner`'s boundary is certainly outside `outer` (surfaces known to be apart):

@@ -1,24 +1,27 @@
-//! The distance query between two posed solids: Algorithm 2 over the boundary surfaces
-//! ([`crate::query::traverse::search`]), then solid semantics (overlap and nesting give 0,
-//! [`crate::query::traverse::overlap`]), optional refinement on the exact surfaces, and frame coherence
-//! through a [`QueryCache`].
+//! The distance query between two posed solids: the entry points and their checks, the
+//! interval's rounding slack ([`query_slack`]: every snap and tolerance of the kernels), and
+//! the choice of path: the closed form for balls and solid tori
+//! ([`crate::query::closed_form`]), the convex path ([`crate::query::convex`]), else the
+//! search over the boundary surfaces ([`crate::query::search`]) followed by solid semantics
+//! (overlap and nesting give 0, [`crate::query::front::overlap`]), optional refinement on
+//! the exact surfaces, and frame coherence through a [`QueryCache`].
 //!
-//! Certification: the traversal bounds the distance between the boundary surfaces; the
-//! interval is widened by the query's rounding slack ([`query_slack`]: every snap and
-//! tolerance of the kernels). Solids that do not overlap have the surfaces' distance;
-//! overlapping or nested solids have distance 0. `overlap = true` (with
+//! Certification: the search bounds the distance between the boundary surfaces; the
+//! interval is widened by the query's rounding slack. Solids that do not overlap have the
+//! surfaces' distance; overlapping or nested solids have distance 0. `overlap = true` (with
 //! `lower = upper = 0`) only with a certificate: a point inside both true solids. When
 //! overlap can be neither certified nor excluded at the trees' accuracy, `lower = 0`.
 
 use super::overlap::{certify_overlap, inscribed_overlap, nesting, Verdict};
 use super::refine::refine_on_profiles;
-use super::search::{traverse, Budget, TraversalOptions, TraversalStats};
 use crate::bvh::QueryTree;
 use crate::query::bound::node_pair::BoundKind;
-use crate::query::convex::{convex_distance, ConvexAnswer};
-use crate::query::kernel::ball_torus::{offset_distance, OffsetDistance};
+use crate::query::certified::{Certified, TraversalStats};
+use crate::query::closed_form::offset_distance;
+use crate::query::convex::convex_distance;
+use crate::query::search::{traverse, Budget, TraversalOptions};
 use crate::solid::Solid;
-pub use crate::tolerances::{POSE_SLACK_REL, SIZE_SLACK_REL};
+use crate::tolerances::{POSE_SLACK_REL, SIZE_SLACK_REL};
 use nalgebra::{Isometry3, Point3};
 
 /// How wide the certified interval `upper - lower` may be when the query stops.
@@ -57,7 +60,7 @@ pub struct QueryOptions {
     pub bound: BoundKind,
     /// Refine the witness points on the exact NURBS surfaces (needs the profiles).
     pub refine: bool,
-    /// Answer pairs of balls and solid tori in closed form ([`crate::query::kernel::ball_torus`]),
+    /// Answer pairs of balls and solid tori in closed form ([`crate::query::closed_form`]),
     /// and overlapping solids whose inscribed balls or solid tori overlap
     /// ([`crate::bvh::inscribed`]); `false` runs the traversal for them too (to measure it,
     /// or to compare the two).
@@ -80,24 +83,9 @@ impl Default for QueryOptions {
     }
 }
 
-/// Result of a distance query. Points are in the world frame (A's frame when A sits at
-/// the identity, as in the CLI).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Distance {
-    /// Best estimate, inside `[lower, upper]`.
-    pub value: f64,
-    /// Certified lower bound of the distance between the solids.
-    pub lower: f64,
-    /// Certified upper bound.
-    pub upper: f64,
-    /// Witness point on A (approximating surface, or exact surface after refinement).
-    pub point_a: Point3<f64>,
-    /// Witness point on B.
-    pub point_b: Point3<f64>,
-    /// The solids certainly overlap or nest (then `value = lower = upper = 0`).
-    pub overlap: bool,
-    pub stats: TraversalStats,
-}
+/// Result of a distance query: the [`Certified`] answer of whichever path took it, in the
+/// world frame.
+pub type Distance = Certified;
 
 /// Frame coherence for sequences of queries on the same pair: the best leaf pair of the
 /// last query gives the next query its first upper bound (a realised pair of that leaf
@@ -184,7 +172,7 @@ pub fn try_distance_cached(
 
 /// [`distance`] with a warm start from `cache`, which is updated.
 ///
-/// Solid semantics ([`crate::query::traverse::overlap`]): the traversal bounds the distance between the
+/// Solid semantics (`query/front/overlap.rs`): the search bounds the distance between the
 /// boundary surfaces; overlap is reported only with a certificate (a point inside both true
 /// solids); when overlap can be neither certified nor excluded, `lower = 0`.
 pub fn distance_cached(
@@ -194,7 +182,7 @@ pub fn distance_cached(
     cache: &mut QueryCache,
 ) -> Distance {
     // Outside the representable range the only certificate is the trivial one.
-    try_distance_cached(a, b, opts, cache).unwrap_or(Distance {
+    try_distance_cached(a, b, opts, cache).unwrap_or(Certified {
         value: f64::INFINITY,
         lower: 0.0,
         upper: f64::INFINITY,
@@ -210,12 +198,12 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     let pos_ab = a.relative_pose(b);
     let slack = query_slack(&a.tree, &b.tree, &pos_ab);
     if let (true, Some(oa), Some(ob)) = (opts.closed_form, &a.tree.offset, &b.tree.offset) {
-        return offset_result(a, &offset_distance(oa, ob, &pos_ab, slack));
+        return offset_distance(oa, ob, &pos_ab, slack).placed(&a.pose);
     }
     if opts.convex_path && !opts.refine {
         let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);
         if let Some(r) = convex_distance(&a.tree, &b.tree, &pos_ab, slack, width) {
-            return convex_result(a, &r);
+            return r.placed(&a.pose);
         }
     }
     // Nested, coincident and deeply overlapping solids: their inscribed balls or solid
@@ -226,9 +214,22 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
                 closed_forms: 1,
                 ..TraversalStats::default()
             };
-            return overlap_result(a.pose * x, a.pose * x, stats);
+            return Certified::overlap_at(x, stats).placed(&a.pose);
         }
     }
+    search_path(a, b, &pos_ab, slack, opts, cache).placed(&a.pose)
+}
+
+/// The search's bounds on the boundary surfaces ([`traverse`]) made an answer for the
+/// solids (A's frame): the overlap or nesting verdict, then refinement when asked.
+fn search_path(
+    a: &Solid,
+    b: &Solid,
+    pos_ab: &Isometry3<f64>,
+    slack: f64,
+    opts: &QueryOptions,
+    cache: &mut QueryCache,
+) -> Certified {
     // The answer is widened by the rounding slack on both sides: the traversal stops that
     // much narrower, so that `upper - lower` keeps within the requested width.
     let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);
@@ -243,10 +244,9 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
         budget: opts.budget,
         bound: opts.bound,
     };
-    let s = traverse(&a.tree, &b.tree, &pos_ab, &topts, cache.last_pair);
+    let s = traverse(&a.tree, &b.tree, pos_ab, &topts, cache.last_pair);
     cache.last_pair = s.best_pair.or(cache.last_pair);
     let eps_sum = a.tree.eps + b.tree.eps;
-    let world = |p: &Point3<f64>| a.pose * p;
     let surface_lower = (s.lower - slack).max(0.0);
     let surface_upper = s.upper + slack;
 
@@ -263,7 +263,7 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
             certify_overlap(
                 &a.tree,
                 &b.tree,
-                &pos_ab,
+                pos_ab,
                 s.best_pair,
                 witness,
                 s.surfaces_meet,
@@ -274,10 +274,10 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
             None => Verdict::Undecided,
         }
     } else {
-        nesting(&a.tree, &b.tree, &pos_ab, &s.point_a, &s.point_b, slack)
+        nesting(&a.tree, &b.tree, pos_ab, &s.point_a, &s.point_b, slack)
     };
     let lower = match verdict {
-        Verdict::Overlap(x) => return overlap_result(world(&x), world(&x), s.stats),
+        Verdict::Overlap(x) => return Certified::overlap_at(x, s.stats),
         Verdict::Apart => surface_lower,
         Verdict::Undecided => 0.0,
     };
@@ -285,7 +285,7 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     let (mut pa, mut pb) = (s.point_a, s.point_b);
     let mut value = s.approx;
     if opts.refine {
-        if let Some(r) = refine_on_profiles(a, b, &pos_ab, &pa, &pb) {
+        if let Some(r) = refine_on_profiles(a, b, pos_ab, &pa, &pb) {
             // Two points on the exact boundaries: their distance is an upper bound. A value
             // below the certified lower bound would contradict it; it is never used to move
             // the lower bound, and such a refinement is discarded.
@@ -297,65 +297,13 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
             }
         }
     }
-    Distance {
+    Certified {
         value: value.clamp(lower, upper),
         lower,
         upper,
-        point_a: world(&pa),
-        point_b: world(&pb),
-        overlap: false,
-        stats: s.stats,
-    }
-}
-
-/// The closed form for two balls or solid tori ([`crate::query::kernel::ball_torus`]) as a query answer:
-/// overlap only with a point inside both true solids, `lower = 0` in the band around
-/// touching where neither overlap nor separation is certain.
-fn offset_result(a: &Solid, r: &OffsetDistance) -> Distance {
-    let stats = TraversalStats {
-        closed_forms: 1,
-        ..TraversalStats::default()
-    };
-    if let Some(x) = r.inside_both {
-        let x = a.pose * x;
-        return overlap_result(x, x, stats);
-    }
-    Distance {
-        value: r.value.clamp(r.lower, r.upper),
-        lower: r.lower,
-        upper: r.upper,
-        point_a: a.pose * r.point_a,
-        point_b: a.pose * r.point_b,
-        overlap: false,
-        stats,
-    }
-}
-
-/// The convex fast path's answer ([`crate::query::convex`]) in the world frame.
-fn convex_result(a: &Solid, r: &ConvexAnswer) -> Distance {
-    let stats = TraversalStats {
-        convex_paths: 1,
-        ..TraversalStats::default()
-    };
-    Distance {
-        value: r.value,
-        lower: r.lower,
-        upper: r.upper,
-        point_a: a.pose * r.point_a,
-        point_b: a.pose * r.point_b,
-        overlap: r.overlap,
-        stats,
-    }
-}
-
-fn overlap_result(pa: Point3<f64>, pb: Point3<f64>, stats: TraversalStats) -> Distance {
-    Distance {
-        value: 0.0,
-        lower: 0.0,
-        upper: 0.0,
         point_a: pa,
         point_b: pb,
-        overlap: true,
-        stats,
+        overlap: false,
+        stats: s.stats,
     }
 }

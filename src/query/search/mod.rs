@@ -1,21 +1,38 @@
-//! Algorithm 2 of the paper (section 4.2): best-first traversal of node pairs with a
-//! priority queue, upper bound from leaf patch distances plus their eps, lower bound from
-//! the queue's top; with the anytime budget of Johnson and Cohen (1997, section 3.1.3).
+//! The search: Algorithm 2 of the paper (section 4.2), the path of every pair the closed
+//! form ([`crate::query::closed_form`]) and the convex path ([`crate::query::convex`]) do not
+//! answer. Best-first traversal of node pairs with a priority queue, upper bound from leaf
+//! patch distances plus their eps, lower bound from the queue's top; with the anytime budget
+//! of Johnson and Cohen (1997, section 3.1.3). It bounds the distance between the two
+//! boundary *surfaces* ([`SurfaceBounds`]); what that means for the solids (overlap and
+//! nesting) is decided by the front door ([`crate::query`]).
+//!
+//! **Its levels.** This file orders and prunes node pairs; [`leaf`] bounds a leaf pair in
+//! stages, cheap bounds before exact ones; [`kernel`] measures one patch pair exactly, by
+//! case. Each calls only the ones after it.
+//!
+//! **What it may call.** [`leaf`] and [`kernel`], the shared volume bounds
+//! ([`crate::query::bound`]) and circle-level solvers ([`crate::query::angles`]), the
+//! counters of [`crate::query::TraversalStats`], and the trees of [`crate::bvh`]. Never the
+//! other two paths or the front door.
 //!
 //! Invariant: every queue key is a lower bound of the distance between the
 //! original surface pieces under its node pair; pairs dropped because their key reached
 //! `upper - tolerance` are remembered in `pruned_min`. At any moment
 //! `min(queue top, pruned_min, upper)` is a lower bound of the surface distance, and
 //! `upper` is an upper bound (a realised patch distance plus both leaves' eps). A leaf pair
-//! is first given its stage-1 bounds ([`crate::query::leaf`]) and re-inserted as "bounded" with key
+//! is first given its stage-1 bounds ([`leaf`]) and re-inserted as "bounded" with key
 //! `lower - eps_a - eps_b`, or as "resolved" when the bounds are already tight; a bounded
 //! pair popped again gets the exact solve and becomes resolved; popping a resolved pair
 //! means nothing can be refined further.
 
+pub mod kernel;
+pub mod leaf;
+
 use crate::biarc::Disk;
 use crate::bvh::QueryTree;
 use crate::query::bound::node_pair::{axis_direction, node_pair_bound, sphere_bound, BoundKind};
-use crate::query::leaf::{LeafPair, LeafResult};
+use crate::query::certified::TraversalStats;
+use leaf::{LeafPair, LeafResult};
 use nalgebra::{Isometry3, Point3};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -35,63 +52,6 @@ const UPPER_HULL_STEPS: usize = 1;
 pub struct Budget {
     pub max_node_pairs: Option<usize>,
     pub max_time: Option<Duration>,
-}
-
-/// Counters of one traversal.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
-pub struct TraversalStats {
-    /// Node pairs popped from the queue.
-    pub node_pairs: usize,
-    /// Leaf pairs settled or bounded by stage-1 bounds alone ([`crate::query::leaf`]).
-    pub leaf_bounds: usize,
-    /// Leaf pairs whose stage-1 bound was sharpened by sub-piece bounds before any exact
-    /// solve ([`crate::query::leaf::LeafPair::tightened_lower`]).
-    pub leaf_tightened: usize,
-    /// Leaf pairs that went to the exact stage (some of their patch pairs solved exactly).
-    pub leaf_tests: usize,
-    /// Patch pairs given cheap bounds (one circle/circle minimum each).
-    pub patch_bounds: usize,
-    /// Patch pairs solved exactly (up to 4 per leaf pair for biarcs).
-    pub patch_tests: usize,
-    /// Wall time in stage-1 leaf bounds, nanoseconds (the cost model's time split).
-    pub leaf_bounds_ns: u64,
-    /// Wall time in exact leaf solves (stage 2), nanoseconds.
-    pub leaf_tests_ns: u64,
-    /// Node-pair bounds computed.
-    pub bound_tests: usize,
-    /// Largest queue length.
-    pub max_queue: usize,
-    /// Queries answered by the closed form for balls and solid tori ([`crate::query::kernel::ball_torus`]),
-    /// or certified overlapping by the solids' inscribed balls and solid tori
-    /// ([`crate::bvh::inscribed`]), without a traversal.
-    pub closed_forms: usize,
-    /// Queries answered by the convex fast path ([`crate::query::convex`]), without a
-    /// traversal.
-    pub convex_paths: usize,
-    /// Patch pairs whose kernel needed a sampled scan, bounded below by subdivision
-    /// ([`crate::query::leaf::subdivision`]).
-    pub subdivided_pairs: usize,
-    /// The budget stopped the traversal before the tolerance was reached.
-    pub budget_exhausted: bool,
-}
-
-impl TraversalStats {
-    /// Adds another traversal's counters (a query that traversed twice reports both).
-    pub fn add(&mut self, o: &TraversalStats) {
-        self.node_pairs += o.node_pairs;
-        self.leaf_bounds += o.leaf_bounds;
-        self.leaf_tests += o.leaf_tests;
-        self.patch_bounds += o.patch_bounds;
-        self.patch_tests += o.patch_tests;
-        self.leaf_bounds_ns += o.leaf_bounds_ns;
-        self.leaf_tests_ns += o.leaf_tests_ns;
-        self.bound_tests += o.bound_tests;
-        self.max_queue = self.max_queue.max(o.max_queue);
-        self.closed_forms += o.closed_forms;
-        self.convex_paths += o.convex_paths;
-        self.subdivided_pairs += o.subdivided_pairs;
-        self.budget_exhausted |= o.budget_exhausted;
-    }
 }
 
 /// Result of a traversal over the two boundary surfaces.
@@ -313,10 +273,10 @@ pub struct TraversalOptions {
 enum State {
     /// Key from node bounds only.
     Open,
-    /// Leaf pair with stage-1 bounds ([`crate::query::leaf`]); an exact solve may narrow it.
+    /// Leaf pair with stage-1 bounds ([`leaf`]); an exact solve may narrow it.
     Bounded,
     /// Bounded leaf pair whose lower bound was sharpened by sub-piece bounds
-    /// ([`crate::query::leaf::LeafPair::tightened_lower`]); popped again, it is solved exactly.
+    /// ([`leaf::LeafPair::tightened_lower`]); popped again, it is solved exactly.
     Tightened,
     /// Leaf pair whose interval nothing can narrow further.
     Resolved,
@@ -326,7 +286,7 @@ enum State {
 /// `warm` is a leaf pair whose realised upper bound starts the query instead of the dive's
 /// (frame coherence: the last frame's best leaf pair).
 ///
-/// Leaf pairs are evaluated in two stages ([`crate::query::leaf`]): their stage-1 bounds when first
+/// Leaf pairs are evaluated in two stages ([`leaf`]): their stage-1 bounds when first
 /// popped, the exact solve only if they are popped again, i.e. only while they still hold
 /// the query's lower bound and the tolerance is not met.
 pub fn traverse(

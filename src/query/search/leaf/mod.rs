@@ -8,9 +8,9 @@
 //! kernel ([`super::kernel`]) only for the pairs still holding the query's lower bound. The
 //! stages and their budgets are in [`stages`].
 //!
-//! **What it may call.** [`super::kernel`] (exact patch distance), [`super::bound`] (volume
-//! bounds), [`super::angles`] (circle-level solvers), and [`crate::bvh`] (patches, disks,
-//! hulls, point-in-solid). Never the traversal above it.
+//! **What it may call.** [`super::kernel`] (exact patch distance), [`crate::query::bound`] (volume
+//! bounds), [`crate::query::angles`] (circle-level solvers), and [`crate::bvh`] (patches, disks,
+//! hulls, point-in-solid). Never the traversal above it ([`super`]).
 
 pub mod patch_lower;
 pub mod patch_upper;
