@@ -97,6 +97,7 @@ impl TraversalStats {
     pub fn add(&mut self, o: &TraversalStats) {
         self.node_pairs += o.node_pairs;
         self.leaf_bounds += o.leaf_bounds;
+        self.leaf_tightened += o.leaf_tightened;
         self.leaf_tests += o.leaf_tests;
         self.patch_bounds += o.patch_bounds;
         self.patch_tests += o.patch_tests;
