@@ -16,8 +16,8 @@
 //! threshold keeps `min(depth, cap) + R` above the threshold, so such a region is never
 //! dropped (it is only visited later than its true bound would put it). Regions whose bound is at most the threshold hold no certificate and are
 //! dropped; the others are split (the larger of the meridian and angular radii halves) and
-//! visited deepest bound first, so a deep overlap is reached before the shallow band around
-//! a contact is refined.
+//! visited deepest first, by `depth(X) + R / 2` ([`PRIORITY_RADIUS_WEIGHT`]), so a deep
+//! overlap is reached before the shallow band around a contact is refined.
 //!
 //! **Certificate.** Only a point of an approximating surface certifies: the centre of a
 //! sub-arc region, lifted, deeper than the threshold, or, for a node region whose centre is
@@ -44,6 +44,13 @@ use std::f64::consts::TAU;
 /// Largest region radius a centre's depth is capped at, as a fraction of the outer root
 /// disk's radius ([`region_depth`]).
 const CAP_FRACTION: f64 = 0.25;
+
+/// Weight of a region's radius in its visiting priority, `depth(centre) + w R`: regions are
+/// dropped by their bound (`w = 1`), but visited deeper centres first, which reaches an
+/// overlap before every wide region around the contact is refined. Three corner crossings
+/// the campaign found needed 201, 707 and 1,715 evaluations at `w = 1`, and 123, 365 and 783
+/// at 0.5; at 0.25 the third never finished (a shallow lens held the search).
+const PRIORITY_RADIUS_WEIGHT: f64 = 0.5;
 
 /// Angle intervals the search starts from, per direction (30 degrees each).
 const START_INTERVALS: usize = 12;
@@ -78,8 +85,9 @@ enum Meridian {
 
 #[derive(Debug, Clone, Copy)]
 struct Region {
-    /// Upper bound of the depth of the region's points.
-    bound: f64,
+    /// Visiting order, largest first ([`PRIORITY_RADIUS_WEIGHT`]); the region's bound is
+    /// above the threshold (else it was dropped).
+    priority: f64,
     dir: usize,
     set: Meridian,
     t0: f64,
@@ -99,7 +107,7 @@ impl PartialOrd for Region {
 }
 impl Ord for Region {
     fn cmp(&self, o: &Self) -> Ordering {
-        self.bound.total_cmp(&o.bound)
+        self.priority.total_cmp(&o.priority)
     }
 }
 
@@ -190,7 +198,7 @@ pub fn deep_point(dirs: &[Direction<'_>], budget: usize) -> DeepPoint {
         let bound = depth + radius;
         if bound > d.threshold {
             heap.push(Region {
-                bound,
+                priority: depth + PRIORITY_RADIUS_WEIGHT * radius,
                 dir,
                 set,
                 t0,
