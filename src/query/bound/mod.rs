@@ -14,6 +14,7 @@
 
 pub mod hull_bound;
 pub mod node_pair;
+pub mod sector;
 pub mod simplex;
 
 pub use hull_bound::{hull_bound, hull_bound_until};

@@ -190,7 +190,7 @@ mod tests {
         let e = parse_line("ring sphere | 0 0 | 1 0 0 0 | 1e-4 | x").unwrap_err();
         assert!(e.contains("translation: expected 3 numbers, got 2"), "{e}");
         assert!(parse_line("ring | 0 0 0 | 1 0 0 0 | 1e-4 | x").is_err());
-        assert_eq!(frozen_cases().len(), 22);
-        assert_eq!(frozen_profiles().len(), 21);
+        assert_eq!(frozen_cases().len(), 23);
+        assert_eq!(frozen_profiles().len(), 22);
     }
 }

@@ -14,6 +14,7 @@
 
 pub mod patch_lower;
 pub mod patch_upper;
+pub mod sectors;
 pub mod stages;
 pub mod subdivision;
 

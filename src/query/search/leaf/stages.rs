@@ -17,6 +17,7 @@
 
 use super::patch_lower::{patch_lower, CoreMemo, PatchLower};
 use super::patch_upper::{patch_upper, polish, realised, PatchBounds};
+use super::sectors::sector_lower_bound;
 use super::subdivision::{patch_lower_bound, CERTIFY_MAX_PAIRS};
 use crate::bvh::containment::point_in_solid;
 use crate::bvh::patch::Patch;
@@ -24,7 +25,7 @@ use crate::bvh::tree::QueryTree;
 use crate::query::bound::hull_bound::hull_bound_until;
 use crate::query::bound::node_pair::sphere_bound;
 use crate::query::search::kernel::patch_distance::{
-    patch_distance_memo, BoundaryMemo, MemoSlot, PatchOptions,
+    patch_distance_memo, BoundaryMemo, MemoSlot, PatchDistance, PatchOptions,
 };
 use crate::tolerances::SETTLE_REL;
 use nalgebra::{Isometry3, Point2, Point3, Vector3};
@@ -128,6 +129,44 @@ pub struct LeafPair<'q> {
     /// the later stages of the same leaf pair start from it instead of computing it again
     /// (it was searched to a level at least as high as theirs, so it is at least as tight).
     stage1: Vec<(u32, u32, PatchLower)>,
+}
+
+/// A rigorous lower bound for a patch pair whose kernel answer `pd` was sampled (an upper
+/// bound only), searched to `precision` below it: the sector subdivision
+/// ([`sector_lower_bound`], converges where one patch wraps around the other), then, when it
+/// stops short, the profile subdivision ([`patch_lower_bound`], whose full-turn solid tori
+/// can do better on long continua of near-minimal pairs); the larger of two valid bounds.
+fn certified_lower(
+    pa: &Patch,
+    pb: &Patch,
+    pos_ab: &Isometry3<f64>,
+    pd: &PatchDistance,
+    precision: f64,
+) -> f64 {
+    let dir = pd.point_b - pd.point_a;
+    let (a, b, upper) = (&pa.arc, &pb.arc, pd.distance);
+    let sectors = sector_lower_bound(
+        a,
+        b,
+        pos_ab,
+        upper,
+        precision,
+        CERTIFY_MAX_PAIRS,
+        Some(&dir),
+    );
+    if sectors >= upper - precision {
+        return sectors;
+    }
+    let profile = patch_lower_bound(
+        a,
+        b,
+        pos_ab,
+        upper,
+        precision,
+        CERTIFY_MAX_PAIRS,
+        Some(&dir),
+    );
+    sectors.max(profile)
 }
 
 /// Outward unit normal (3-D, tree frame) of a patch at its surface point `x`.
@@ -416,15 +455,7 @@ impl<'q> LeafPair<'q> {
             let pd = patch_distance_memo(pa, pb, self.pos_ab, popts, Some(slot));
             let pair_lower = if pd.sampled {
                 r.subdivided_pairs += 1;
-                patch_lower_bound(
-                    &pa.arc,
-                    &pb.arc,
-                    self.pos_ab,
-                    pd.distance,
-                    precision,
-                    CERTIFY_MAX_PAIRS,
-                    Some(&(pd.point_b - pd.point_a)),
-                )
+                certified_lower(pa, pb, self.pos_ab, &pd, precision)
             } else {
                 pd.distance
             };

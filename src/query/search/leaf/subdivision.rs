@@ -151,6 +151,7 @@ pub fn patch_lower_bound(
 
 #[cfg(test)]
 mod tests {
+    use super::super::sectors::sector_lower_bound;
     use super::*;
     use crate::test_rng::Lcg;
     use nalgebra::{Point2, Translation3, UnitQuaternion, Vector3};
@@ -177,7 +178,8 @@ mod tests {
     }
 
     /// The bound never exceeds a dense sampling of the true distance (an upper estimate)
-    /// and, with budget enough, comes within the precision of it.
+    /// and, with budget enough, comes within the precision of it; the same for the sector
+    /// subdivision ([`super::super::sectors`]).
     #[test]
     fn bound_is_valid_and_tight() {
         let mut s = Lcg(11);
@@ -220,17 +222,27 @@ mod tests {
                     sampled = sampled.min(d);
                 }
             }
-            let lb = patch_lower_bound(&a, &b, &pos, sampled, 1e-3, 1 << 20, None);
+            let hint = Vector3::new(f() - 0.5, f() - 0.5, f() - 0.5);
+            let profile = patch_lower_bound(&a, &b, &pos, sampled, 1e-3, 1 << 20, None);
+            let sectors = sector_lower_bound(&a, &b, &pos, sampled, 1e-3, 1 << 20, Some(&hint));
+            for (method, lb) in [("profile", profile), ("sectors", sectors)] {
+                assert!(
+                    lb <= sampled + 1e-12,
+                    "case {case} ({method}): {lb} > sampled {sampled}"
+                );
+                // Sampling resolution: A's samples are at most 2 pi * 1.5 / 400 + 1.5 / 400
+                // ~ 0.03 apart, so the sampled value is within that of the truth; the bound
+                // must be within that plus its precision 1e-3.
+                assert!(
+                    lb >= sampled - 0.035,
+                    "case {case} ({method}): {lb} far below {sampled}"
+                );
+            }
+            // With budget enough both searches end within the precision below the truth (or
+            // at the sampled value), and neither is above it: two independent methods agree.
             assert!(
-                lb <= sampled + 1e-12,
-                "case {case}: {lb} > sampled {sampled}"
-            );
-            // Sampling resolution: A's samples are at most 2 pi * 1.5 / 400 + 1.5 / 400 ~ 0.03
-            // apart, so the sampled value is within that of the truth; the bound must be
-            // within that plus its precision 1e-3.
-            assert!(
-                lb >= sampled - 0.035,
-                "case {case}: {lb} far below {sampled}"
+                (profile - sectors).abs() <= 1e-3 + 1e-9,
+                "case {case}: profile {profile} and sectors {sectors} disagree"
             );
         }
     }
