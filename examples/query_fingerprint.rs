@@ -12,6 +12,8 @@
 //! ```text
 //! cargo run --release --example query_fingerprint
 //! ```
+//!
+//! `FINGERPRINT_TRACE=1` also prints each pose query's answer on stderr, to diff two builds.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use revdist::models::model;
@@ -144,6 +146,17 @@ fn options(k: usize) -> QueryOptions {
     o
 }
 
+/// With `FINGERPRINT_TRACE` set, one line per pose query on stderr (to find which
+/// queries two builds answer differently: diff the two outputs).
+fn trace(na: &str, nb: &str, k: usize, d: &Distance) {
+    if std::env::var_os("FINGERPRINT_TRACE").is_some() {
+        eprintln!(
+            "{na}-{nb} {k}: [{:e}, {:e}] value {:e} overlap {} {:?}",
+            d.lower, d.upper, d.value, d.overlap, d.stats
+        );
+    }
+}
+
 fn main() {
     let pairs: &[(&str, &str, f64)] = &[
         ("sphere", "sphere", 1e-3),
@@ -187,6 +200,7 @@ fn main() {
             let b = b0.with_pose(pb);
             let opts = options(k);
             let d = distance(&a, &b, &opts);
+            trace(na, nb, k, &d);
             queries += 1;
             paths[path(&d)] += 1;
             paths[3] += d.overlap as usize;
@@ -206,6 +220,7 @@ fn main() {
                 );
                 let b2 = b0.with_pose(moved);
                 let d2 = distance(&a, &b2, &opts);
+                trace(na, nb, k, &d2);
                 queries += 1;
                 paths[path(&d2)] += 1;
                 paths[3] += d2.overlap as usize;

@@ -207,6 +207,37 @@ pub fn odd_roots_guarded(
     scratch: &mut [f64],
     sink: &mut impl FnMut(f64),
 ) {
+    let mut roots_only = |found: Found| {
+        if let Found::Root(x) = found {
+            sink(x);
+        }
+    };
+    odd_roots_flat(c, guard, lo, hi, t_tol, noise_abs, scratch, &mut roots_only);
+}
+
+/// What [`odd_roots_flat`] reports: a sign change, or a flat piece that may hide a pair.
+#[derive(Debug, Clone, Copy)]
+enum Found {
+    Root(f64),
+    Flat(f64, f64),
+}
+
+/// [`odd_roots_guarded`], also reporting ([`Found::Flat`]) every piece `[a, b]` that stopped as
+/// indistinguishable from zero while its coefficients still change sign: such a piece may
+/// hold a pair of roots closer than rounding can separate (the ends of one sign, the values
+/// between them within the noise bound of the other), which a search for sign changes
+/// alone loses.
+#[allow(clippy::too_many_arguments)]
+fn odd_roots_flat(
+    c: &[f64],
+    guard: Option<(&[f64], f64)>,
+    lo: f64,
+    hi: f64,
+    t_tol: f64,
+    noise_abs: f64,
+    scratch: &mut [f64],
+    report: &mut impl FnMut(Found),
+) {
     let m = c.len();
     if m < 2 || hi <= lo {
         return;
@@ -247,7 +278,7 @@ pub fn odd_roots_guarded(
                 .unwrap_or(0.0);
             restrict_into(c, a, b, piece);
             if left * right < 0.0 {
-                sink(b);
+                report(Found::Root(b));
             }
         }
         let v = sign_variations(piece);
@@ -256,20 +287,21 @@ pub fn odd_roots_guarded(
         }
         if piece.iter().all(|x| x.abs() <= noise_abs) {
             if f0 * f1 < 0.0 {
-                sink(0.5 * (a + b));
+                report(Found::Root(0.5 * (a + b)));
             }
+            report(Found::Flat(a, b));
             continue;
         }
         if v == 1 && f0 != 0.0 && f1 != 0.0 {
             let dpiece = &mut rest[..m - 1];
             derivative_into(piece, dpiece);
             let x = refine_bracketed(piece, dpiece, tol / (b - a));
-            sink(a + x * (b - a));
+            report(Found::Root(a + x * (b - a)));
             continue;
         }
         if b - a <= tol || top + 2 > STACK_CAP {
             if f0 * f1 < 0.0 {
-                sink(0.5 * (a + b));
+                report(Found::Root(0.5 * (a + b)));
             }
             continue;
         }
@@ -389,9 +421,11 @@ pub const fn roots_scratch_len(n_coeffs: usize) -> usize {
     4 * n_coeffs
 }
 
-/// Candidate-buffer length needed by [`roots_into`] for `n + 1` coefficients.
+/// Candidate-buffer length needed by [`roots_into`] for `n + 1` coefficients: the odd roots
+/// and the derivative's roots (at most `n` and `n - 1`), the two ends, and room for the two
+/// ends of a few flat pieces.
 pub const fn roots_candidate_len(n_coeffs: usize) -> usize {
-    2 * n_coeffs + 2
+    3 * n_coeffs + 2
 }
 
 /// All distinct real roots of `c` in [0, 1], including even multiplicity, each to within
@@ -419,6 +453,15 @@ pub fn roots_into(
         cand,
         &mut |r: RootCluster| sink(r.root, r.kind),
     );
+}
+
+/// Whether `c` restricted to `[a, b]` has every coefficient within its noise bound
+/// ([`noise_of`]): the piece cannot be told apart from zero. `scratch` holds `c.len()` values.
+fn flat_between(c: &[f64], a: f64, b: f64, coeff_noise: f64, scratch: &mut [f64]) -> bool {
+    let piece = &mut scratch[..c.len()];
+    restrict_into(c, a, b, piece);
+    let noise = noise_of(c, coeff_noise);
+    piece.iter().all(|x| x.abs() <= noise)
 }
 
 /// One root reported by [`root_clusters_into`]: the representative `root` and the span
@@ -461,8 +504,20 @@ pub fn root_clusters_into(
         push(0.0, RootKind::Even, &mut count);
     }
     {
-        let mut odd = |x: f64| push(x, RootKind::Odd, &mut count);
-        odd_roots_into(c, 0.0, 1.0, t_tol, noise_of(c, coeff_noise), rest, &mut odd);
+        // A flat piece (within the noise, coefficients changing sign) becomes a cluster:
+        // both its ends as even candidates, merged below because the piece between them is
+        // flat. Without it two roots closer than the noise can resolve, whose piece has ends
+        // of one sign, were lost (a nearly cylindrical cone's squared critical-angle
+        // equation, `query::angles::meridian_line`).
+        let mut found = |f: Found| match f {
+            Found::Root(x) => push(x, RootKind::Odd, &mut count),
+            Found::Flat(a, b) => {
+                push(a, RootKind::Even, &mut count);
+                push(b, RootKind::Even, &mut count);
+            }
+        };
+        let noise = noise_of(c, coeff_noise);
+        odd_roots_flat(c, None, 0.0, 1.0, t_tol, noise, rest, &mut found);
     }
     if m > 2 {
         let mut crit = |x: f64| {
@@ -499,7 +554,9 @@ pub fn root_clusters_into(
             let close = next.0 - prev <= t_tol;
             let has_even = best.1 == RootKind::Even || next.1 == RootKind::Even;
             let mid = 0.5 * (prev + next.0);
-            let flat = has_even && eval(c, mid).abs() <= zero_tolerance(c, mid, coeff_noise);
+            let flat = has_even
+                && (eval(c, mid).abs() <= zero_tolerance(c, mid, coeff_noise)
+                    || flat_between(c, prev, next.0, coeff_noise, rest));
             if !(close || flat) {
                 break;
             }

@@ -147,7 +147,7 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Only this bound (repeat or separate by commas): sphere, torus, shell, slab, hull,
-        /// node-sphere, node-torus, patch-lower, subdivision, kernel, leaf-stages,
+        /// node-sphere, node-torus, patch-lower, subdivision, sectors, kernel, leaf-stages,
         /// closed-form, convex, motion-rounding, motion-speed.
         #[arg(long, value_delimiter = ',')]
         bound: Vec<String>,

@@ -4,6 +4,7 @@
 
 use nalgebra::{Isometry3, Point2, Quaternion, Translation3, UnitQuaternion};
 use revdist::bvh::{Patch, ProfileArc};
+use revdist::query::search::leaf::patch_lower::{patch_lower, CoreMemo};
 use revdist::query::{patch_distance, query_slack};
 use verify::bounds::{checks::piece_pair_reference, run, Bound, Options};
 
@@ -19,7 +20,7 @@ fn campaign(bounds: Vec<Bound>) -> verify::bounds::report::Report {
     })
 }
 
-/// Every bound of `query::bound`, stage 1 and the subdivision holds; the search is
+/// Every bound of `query::bound`, stage 1 and both subdivisions holds; the search is
 /// powerful enough for the test to mean something (its realised pairs meet the exact
 /// kernel's value and every constructed contact).
 #[test]
@@ -35,6 +36,7 @@ fn volume_stage1_and_subdivision_bounds_hold() {
         NodeTorus,
         PatchLower,
         Subdivision,
+        Sectors,
     ];
     let r = campaign(bounds.clone());
     println!("{r}");
@@ -155,19 +157,108 @@ fn nearly_flat_cones_crossing() {
     assert_kernel_holds_at_contact(a, b, &pos);
 }
 
-/// The pieces meet (MPFR reference below 1e-12) and the kernel's value is either marked an
-/// upper bound only (`sampled`) or within the query's slack of that reference.
-fn assert_kernel_holds_at_contact(a: ProfileArc, b: ProfileArc, pos: &Isometry3<f64>) {
-    let realised = piece_pair_reference(&a, &b, pos);
-    assert!(realised < 1e-12, "the construction meets: {realised}");
-    let d = patch_distance(&Patch::new(a), &Patch::new(b), pos);
+/// A cone 1.7e-6 rad from a cylinder (radius 11.7, 51 long) against an arc whose boundary
+/// parallel (radius 67) passes 0.46 from it: the squared critical-angle equation of the
+/// parallel against the cone's line has two roots 5e-7 apart that dip below zero by less
+/// than its noise, and the root finder dropped both; the kernel reported 0.915 as exact
+/// (`verify bounds --seed 20261128`, family flat-cone). It must now find the minimum.
+#[test]
+fn nearly_cylindrical_cone_against_a_parallel() {
+    let a = ProfileArc::Segment {
+        start: Point2::new(11.710682589688702, 22.279073611986945),
+        end: Point2::new(11.710770370946165, 73.13530540533583),
+    };
+    let b = ProfileArc::Arc {
+        center: Point2::new(42.084206170239895, -3.6495358951205104),
+        radius: 24.83859210305374,
+        phi_start: -0.16006291503428322,
+        sweep: 1.073834742784142,
+    };
+    let pos = pose(
+        [
+            0.0016773016373958578,
+            0.2249519942716609,
+            0.6235776447735673,
+            -0.7486953371506134,
+        ],
+        [28.12310572249228, -37.99400890942317, 10.258814651152527],
+    );
+    let realised = piece_pair_reference(&a, &b, &pos);
+    let d = patch_distance(&Patch::new(a), &Patch::new(b), &pos);
+    let slack = slack_of(a, b, &pos);
+    assert!(
+        d.distance <= realised + slack,
+        "kernel {} > realised {realised} + slack {slack}",
+        d.distance
+    );
+}
+
+/// A cone 5e-7 rad from a cylinder of radius 0.06 touching an arc (MPFR reference 1e-16):
+/// the same dropped pair of roots made stage 1's circle/cone bound claim 4.9e-5
+/// (`verify bounds --seed 20261128`, family flat-cone).
+#[test]
+fn nearly_cylindrical_cone_touching_an_arc() {
+    let a = ProfileArc::Segment {
+        start: Point2::new(0.061655684588267506, -0.16561104628658657),
+        end: Point2::new(0.0616556449051601, -0.08553242870651406),
+    };
+    let b = ProfileArc::Arc {
+        center: Point2::new(0.2083434370420428, 0.16583357192004483),
+        radius: 0.03168916035689468,
+        phi_start: -0.2903616611666018,
+        sweep: 1.5966094642494268,
+    };
+    let pos = pose(
+        [
+            0.6159394910316743,
+            0.5440513345915657,
+            -0.4318183686587252,
+            0.3716982448246096,
+        ],
+        [0.31678436824389167, 0.1660286929943573, -0.1629885354968879],
+    );
+    let realised = piece_pair_reference(&a, &b, &pos);
+    let stage1 = patch_lower(
+        &Patch::new(a),
+        &Patch::new(b),
+        &pos,
+        f64::INFINITY,
+        0.0,
+        &mut CoreMemo::default(),
+    );
+    let slack = slack_of(a, b, &pos);
+    assert!(
+        stage1.lower <= realised + slack,
+        "stage 1 {} > realised {realised} + slack {slack}",
+        stage1.lower
+    );
+    assert_kernel_holds_at_contact(a, b, &pos);
+}
+
+/// A pose from a quaternion `(w, i, j, k)` and a translation.
+fn pose(q: [f64; 4], t: [f64; 3]) -> Isometry3<f64> {
+    let rot = UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]));
+    Isometry3::from_parts(Translation3::new(t[0], t[1], t[2]), rot)
+}
+
+/// The query's rounding slack for two single-piece trees.
+fn slack_of(a: ProfileArc, b: ProfileArc, pos: &Isometry3<f64>) -> f64 {
     let tree = |p: ProfileArc| {
         revdist::bvh::QueryTree::from_leaves(
             vec![revdist::bvh::tree::Leaf::new(vec![p], 0.0)],
             revdist::profile::ProfileKind::Closed,
         )
     };
-    let slack = query_slack(&tree(a), &tree(b), pos);
+    query_slack(&tree(a), &tree(b), pos)
+}
+
+/// The pieces meet (MPFR reference below 1e-12) and the kernel's value is either marked an
+/// upper bound only (`sampled`) or within the query's slack of that reference.
+fn assert_kernel_holds_at_contact(a: ProfileArc, b: ProfileArc, pos: &Isometry3<f64>) {
+    let realised = piece_pair_reference(&a, &b, pos);
+    assert!(realised < 1e-12, "the construction meets: {realised}");
+    let d = patch_distance(&Patch::new(a), &Patch::new(b), pos);
+    let slack = slack_of(a, b, pos);
     assert!(
         d.sampled || d.distance <= realised + slack,
         "kernel {} > realised {realised} + slack {slack}",

@@ -377,7 +377,7 @@ mod tests {
     use super::*;
     use crate::test_rng::Lcg;
     use nalgebra::{Point3, Vector3};
-    use std::f64::consts::TAU;
+    use std::f64::consts::{FRAC_PI_2, TAU};
 
     fn random_circle(rng: &mut Lcg) -> ParamCircle {
         let g = |rng: &mut Lcg| Vector3::new(rng.f() - 0.5, rng.f() - 0.5, rng.f() - 0.5);
@@ -404,29 +404,66 @@ mod tests {
 
     /// Every local extremum of either branch on a fine grid is close to a returned angle;
     /// every sign change of `F_s - level` likewise. Includes cylinders (`n_z = 0`: double
-    /// roots) and flat annuli (`n_rho = 0`).
+    /// roots), flat annuli (`n_rho = 0`), and cones within 1e-9..1e-3 rad of either (the
+    /// squared equation's pairs of roots closer than its noise).
     #[test]
     fn finds_every_extremum_and_crossing_of_a_fine_grid() {
         let mut rng = Lcg(5);
-        let m = 20_000;
-        let step = TAU / m as f64;
-        for i in 0..150 {
-            let c = random_circle(&mut rng);
-            let n = match i % 3 {
+        for i in 0..250 {
+            let mut c = random_circle(&mut rng);
+            let n = match i % 5 {
                 0 => Vector2::new(1.0, 0.0),
                 1 => Vector2::new(0.0, 1.0),
-                _ => {
+                2 => {
                     let a = rng.f() * TAU;
                     Vector2::new(a.cos(), a.sin())
                 }
+                k => {
+                    // Nearly a cylinder (k = 3) or a flat annulus (k = 4), at scales up to 100.
+                    let tilt = (rng.f() - 0.5).signum() * 10f64.powf(-3.0 - 6.0 * rng.f());
+                    let scale = 10f64.powf(2.0 * rng.f());
+                    c = ParamCircle {
+                        o: c.o * scale,
+                        u: c.u * scale,
+                        v: c.v * scale,
+                    };
+                    let a = if k == 3 { tilt } else { FRAC_PI_2 + tilt };
+                    Vector2::new(a.cos(), a.sin())
+                }
             };
-            let level = rng.f() - 0.5;
-            let (mut crit, mut lev) = (Vec::new(), Vec::new());
-            assert_ne!(line_field_critical(&c, n, &mut crit), FieldAngles::Constant);
-            assert_ne!(
-                line_field_levels(&c, n, level, &mut lev),
-                FieldAngles::Constant
-            );
+            assert_extrema_found(&c, n, &format!("case {i}"));
+        }
+        // A cone 1.7e-6 rad from a cylinder and a circle of radius 67: two critical angles
+        // 5e-7 apart whose squared equation dips below zero by less than its noise (found by
+        // `verify bounds`, seed 20261128, family flat-cone).
+        let rot = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+            0.0016773016373958578,
+            0.2249519942716609,
+            0.6235776447735673,
+            -0.7486953371506134,
+        ));
+        let t = Vector3::new(28.12310572249228, -37.99400890942317, 10.258814651152527);
+        let pos = nalgebra::Isometry3::from_parts(t.into(), rot);
+        let c = ParamCircle::parallel(66.60529295659464, -7.608318596651639, &pos);
+        let n = Vector2::new(-0.9999999999985103, 1.7260668824118984e-6);
+        assert_extrema_found(&c, n, "pinned near-cylinder");
+    }
+
+    /// [`finds_every_extremum_and_crossing_of_a_fine_grid`] for one circle and line.
+    fn assert_extrema_found(c: &ParamCircle, n: Vector2<f64>, case: &str) {
+        let m = 20_000;
+        let step = TAU / m as f64;
+        let scale = c.o.coords.norm() + c.u.norm();
+        let level = (Lcg(m as u64).f() - 0.5) * scale;
+        let (mut crit, mut lev) = (Vec::new(), Vec::new());
+        assert_ne!(line_field_critical(c, n, &mut crit), FieldAngles::Constant);
+        assert_ne!(
+            line_field_levels(c, n, level, &mut lev),
+            FieldAngles::Constant
+        );
+        {
+            let i = case;
+            let c = *c;
             for s in [1.0, -1.0] {
                 for k in 0..m {
                     let t = k as f64 * step;
@@ -436,16 +473,10 @@ mod tests {
                         field(&c, n, s, t + step),
                     );
                     if (b < a && b < d) || (b > a && b > d) {
-                        assert!(
-                            near(&crit, t, 3.0 * step),
-                            "case {i}: extremum at {t} missed"
-                        );
+                        assert!(near(&crit, t, 3.0 * step), "{i}: extremum at {t} missed");
                     }
                     if (b - level).signum() != (d - level).signum() {
-                        assert!(
-                            near(&lev, t, 3.0 * step),
-                            "case {i}: crossing at {t} missed"
-                        );
+                        assert!(near(&lev, t, 3.0 * step), "{i}: crossing at {t} missed");
                     }
                 }
             }

@@ -17,6 +17,7 @@ use revdist::query::bound::node_pair::{
     node_pair_bound, shell_bound, slab_bound, sphere_bound, torus_bound, BoundKind,
 };
 use revdist::query::search::leaf::patch_lower::{patch_lower, CoreMemo};
+use revdist::query::search::leaf::sectors::sector_lower_bound;
 use revdist::query::search::leaf::subdivision::{patch_lower_bound, CERTIFY_MAX_PAIRS};
 use revdist::query::search::leaf::LeafPair;
 use revdist::query::{patch_distance, query_slack};
@@ -251,6 +252,23 @@ pub fn check(cfg: &PieceConfig, rng: &mut SplitMix64, sink: &mut Sink<'_>) {
                     scale,
                     &what(&format!(
                         "patch_lower_bound precision {precision:?} dir {n:?}"
+                    )),
+                );
+            }
+            if sink.wants(Bound::Sectors) {
+                mark(sink, Bound::Sectors);
+                let precision = rng.log_range(1e-12, 1e-6) * scale;
+                let n: Option<Vector3<f64>> = rng.chance(0.5).then_some(dir);
+                let l =
+                    sector_lower_bound(&a, &b, pos, d, precision, CERTIFY_MAX_PAIRS, n.as_ref());
+                sink.record(
+                    Bound::Sectors,
+                    l,
+                    d,
+                    0.0,
+                    scale,
+                    &what(&format!(
+                        "sector_lower_bound precision {precision:?} dir {n:?}"
                     )),
                 );
             }

@@ -48,6 +48,8 @@ pub enum Bound {
     PatchLower,
     /// `patch_lower_bound`: the subdivision bound.
     Subdivision,
+    /// `sector_lower_bound`: the subdivision into sectors.
+    Sectors,
     /// `patch_distance` when not sampled: the exact kernel.
     Kernel,
     /// `LeafPair::bounds`, `tightened_lower`, `exact` lower fields.
@@ -61,7 +63,7 @@ pub enum Bound {
     MotionSpeed,
 }
 
-pub const BOUNDS: [Bound; 15] = [
+pub const BOUNDS: [Bound; 16] = [
     Bound::Sphere,
     Bound::Torus,
     Bound::Shell,
@@ -71,6 +73,7 @@ pub const BOUNDS: [Bound; 15] = [
     Bound::NodeTorus,
     Bound::PatchLower,
     Bound::Subdivision,
+    Bound::Sectors,
     Bound::Kernel,
     Bound::LeafStages,
     Bound::ClosedForm,
@@ -91,6 +94,7 @@ impl Bound {
             Bound::NodeTorus => "node-torus",
             Bound::PatchLower => "patch-lower",
             Bound::Subdivision => "subdivision",
+            Bound::Sectors => "sectors",
             Bound::Kernel => "kernel",
             Bound::LeafStages => "leaf-stages",
             Bound::ClosedForm => "closed-form",

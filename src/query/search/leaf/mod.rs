@@ -4,7 +4,8 @@
 //! **What this level decides.** How much a leaf pair is worth: stage 1 ([`patch_lower`],
 //! [`patch_upper`]) bounds every patch pair from both sides with closed forms, one
 //! circle/circle minimum and a hull bound, and settles the pair when they meet; pairs that
-//! may intersect get a subdivision lower bound ([`subdivision`]); stage 2 asks the exact
+//! may intersect get a subdivision lower bound ([`subdivision`]), and pairs the kernel
+//! answered by sampling one by sectors first ([`sectors`]); stage 2 asks the exact
 //! kernel ([`super::kernel`]) only for the pairs still holding the query's lower bound. The
 //! stages and their budgets are in [`stages`].
 //!
