@@ -14,6 +14,7 @@
 //! offset contract an inscribed solid keeps (it does not enclose the solid).
 
 use super::containment::point_in_profile_capped;
+use super::deep_interior::DeepInterior;
 use super::offset_solid::{Core, OffsetSolid};
 use super::QueryTree;
 use nalgebra::Point2;
@@ -30,27 +31,22 @@ const KEPT: usize = 4;
 /// a central point).
 const CAP_FRACTION: f64 = 0.25;
 
-/// The deep interior of one solid (module doc).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct DeepInterior {
-    /// Interior meridian points with their clearance from the approximating chain (capped at
-    /// a quarter of the root disk's radius), deepest first; among points at the
-    /// cap, the nearest to the root disk's centre first.
-    pub points: Vec<(Point2<f64>, f64)>,
-    /// The ball or solid torus the deepest point spans, when its clearance exceeds the
-    /// tree's eps.
-    pub inscribed: Option<OffsetSolid>,
+impl QueryTree {
+    /// Interior points of the solid with a large clearance, and the ball or solid torus
+    /// they span (module doc), computed on first use (a 12 x 12 grid of point-in-profile
+    /// tests) and kept in the tree.
+    pub fn deep_interior(&self) -> &DeepInterior {
+        self.deep_cache().get_or_init(|| probe(self))
+    }
 }
 
-impl DeepInterior {
-    /// Probes `tree`'s profile region on a grid over its root disk's bounding box.
-    pub fn of(tree: &QueryTree) -> DeepInterior {
-        let points = deep_meridian_points(tree);
-        let inscribed = points
-            .first()
-            .and_then(|&(m, c)| inscribed_offset(m, c, tree.eps));
-        DeepInterior { points, inscribed }
-    }
+/// Probes `tree`'s profile region on a grid over its root disk's bounding box.
+fn probe(tree: &QueryTree) -> DeepInterior {
+    let points = deep_meridian_points(tree);
+    let inscribed = points
+        .first()
+        .and_then(|&(m, c)| inscribed_offset(m, c, tree.eps));
+    DeepInterior { points, inscribed }
 }
 
 fn deep_meridian_points(tree: &QueryTree) -> Vec<(Point2<f64>, f64)> {

@@ -7,7 +7,8 @@
 //! (arcs and segments, [`patch`]), which disks and hulls bound them ([`hull`],
 //! [`crate::biarc::Disk`]), how the nodes nest ([`tree`]), whether the solid is a ball or a
 //! solid torus answered in closed form ([`offset_solid`]), which points lie inside it
-//! ([`containment`]) and which ball or solid torus lies deep inside it ([`inscribed`]). It
+//! ([`containment`]) and which ball or solid torus lies deep inside it ([`inscribed`], kept in the tree as a
+//! [`deep_interior`]). It
 //! holds no pose: a tree lives in its solid's own frame.
 //!
 //! **What it may call.** Only the levels below it: [`crate::biarc`] (the trees it copies),
@@ -17,6 +18,7 @@
 
 pub mod containment;
 pub mod convex;
+pub mod deep_interior;
 pub mod hull;
 pub mod inscribed;
 pub mod offset_solid;

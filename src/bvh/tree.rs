@@ -5,8 +5,8 @@
 //! torus containing the corresponding part of the solid's boundary (see [`crate::query::bound::node_pair`]).
 
 use super::convex::ConvexHullData;
+use super::deep_interior::DeepCache;
 use super::hull::{HullRef, NodeHull, UpperHull};
-use super::inscribed::DeepInterior;
 use super::offset_solid::{detect, OffsetSolid};
 use super::patch::{Patch, ProfileArc};
 use crate::biarc::Disk;
@@ -14,7 +14,6 @@ use crate::biarc::{Arc as BiarcArc, BiarcTree};
 use crate::num::cross2;
 use crate::profile::ProfileKind;
 use nalgebra::{Point2, Vector2};
-use std::sync::OnceLock;
 
 /// Marker for "no child".
 pub const NO_CHILD: u32 = u32::MAX;
@@ -116,23 +115,10 @@ pub struct QueryTree {
     deep: DeepCache,
 }
 
-/// A lazily computed [`DeepInterior`]: a function of the tree, so it takes no part in
-/// comparisons (a tree whose cache is filled equals one whose cache is not).
-#[derive(Debug, Clone, Default)]
-struct DeepCache(OnceLock<DeepInterior>);
-
-impl PartialEq for DeepCache {
-    fn eq(&self, _: &Self) -> bool {
-        true
-    }
-}
-
 impl QueryTree {
-    /// Interior points of the solid with a large clearance, and the ball or solid torus
-    /// they span ([`super::inscribed`]), computed on first use (a 12 x 12 grid of
-    /// point-in-profile tests) and kept.
-    pub fn deep_interior(&self) -> &DeepInterior {
-        self.deep.0.get_or_init(|| DeepInterior::of(self))
+    /// The cache that [`QueryTree::deep_interior`] (computed in [`super::inscribed`]) fills.
+    pub(super) fn deep_cache(&self) -> &DeepCache {
+        &self.deep
     }
 
     /// Balanced tree over consecutive leaves (profile order).
