@@ -119,7 +119,7 @@ mod tests {
             "morph@0.3",
         ] {
             let s = Solid::from_profile(Arc::new(model(name).unwrap()), 1e-3).unwrap();
-            let deep = DeepInterior::of(&s.tree);
+            let deep = probe(&s.tree);
             let Some(o) = deep.inscribed else { continue };
             seen += 1;
             let r = o.radius - o.error;
