@@ -71,6 +71,13 @@ pub const SEGMENT_SLACK: f64 = 1e-12;
 /// meridian planes are meaningless. 1e-10 keeps the surface change far below any eps.
 pub const AXIS_SNAP: f64 = 1e-10;
 
+/// Relative rise (to the segment's length) below which a segment is made exactly flat
+/// (equal heights) or exactly cylindrical (equal radii): a profile point at `z = -1.4e-18`
+/// where its model meant 0 (an M_t frame's bottom) would otherwise make a cone 9e-18 rad from
+/// flat, whose common-normal solves are ill-conditioned and fall back to subdivision on
+/// every query that reaches it. Each end moves by half the rise, at most 5e-13 of the length.
+pub const FLAT_SNAP: f64 = 1e-12;
+
 /// Rounding per rotation step of a piece hull's chord points
 /// ([`crate::bvh::hull::PieceHull::of_piece`]), relative to the arc's size (radius plus
 /// centre distance): a rotation by a sine/cosine pair moves a unit vector off the unit

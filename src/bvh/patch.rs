@@ -9,7 +9,7 @@
 //! radius `c_rho` (signed) at height `c_z`; every surface normal line meets it at a right angle.
 
 use crate::biarc::Disk;
-use crate::tolerances::{ANGLE_SLACK, AXIS_SNAP, SEGMENT_SLACK};
+use crate::tolerances::{ANGLE_SLACK, AXIS_SNAP, FLAT_SNAP, SEGMENT_SLACK};
 use nalgebra::{Point2, Point3, Vector2, Vector3};
 use std::f64::consts::TAU;
 
@@ -301,6 +301,25 @@ fn snapped(arc: ProfileArc) -> ProfileArc {
             phi_start,
             sweep,
         },
+        ProfileArc::Segment { start, end } => {
+            let (rise, run, length) = (end.y - start.y, end.x - start.x, (end - start).norm());
+            let slight = |d: f64| d != 0.0 && d.abs() <= FLAT_SNAP * length;
+            if slight(rise) {
+                let z = 0.5 * (start.y + end.y);
+                ProfileArc::Segment {
+                    start: Point2::new(start.x, z),
+                    end: Point2::new(end.x, z),
+                }
+            } else if slight(run) {
+                let rho = 0.5 * (start.x + end.x);
+                ProfileArc::Segment {
+                    start: Point2::new(rho, start.y),
+                    end: Point2::new(rho, end.y),
+                }
+            } else {
+                arc
+            }
+        }
         a => a,
     }
 }
@@ -335,17 +354,23 @@ pub enum Core {
 
 impl Patch {
     /// A patch of `arc`, with an arc centre closer to the axis than [`AXIS_SNAP`] times the
-    /// radius moved onto the axis (a sphere patch). The surface moves by at most
+    /// radius moved onto the axis (a sphere patch), and a segment within [`FLAT_SNAP`] of
+    /// flat or cylindrical made exactly so. The surface moves by at most
     /// [`Patch::snap_error`]; callers that certify bounds add it to their eps.
     pub fn new(arc: ProfileArc) -> Self {
         Patch { arc: snapped(arc) }
     }
 
-    /// How far [`Patch::new`] moved the surface of `arc` (0 unless snapped).
+    /// How far [`Patch::new`] moved the surface of `arc` (0 unless snapped): the centre's
+    /// move for an arc (every point moves with it), the larger end's move for a segment (its
+    /// points move by the interpolated amount).
     pub fn snap_error(arc: &ProfileArc) -> f64 {
         match (*arc, snapped(*arc)) {
             (ProfileArc::Arc { center: a, .. }, ProfileArc::Arc { center: b, .. }) => {
                 (a - b).norm()
+            }
+            (ProfileArc::Segment { start, end }, ProfileArc::Segment { start: s2, end: e2 }) => {
+                (start - s2).norm().max((end - e2).norm())
             }
             _ => 0.0,
         }
@@ -516,5 +541,45 @@ impl Patch {
                 Vector2::new(-d.y, d.x)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A segment whose rise or run is rounding (an M_t frame's bottom at `z = -1.4e-18`) is
+    /// made exactly flat or cylindrical, and its snap error bounds how far every point moved;
+    /// a real slope, however small, is kept.
+    #[test]
+    fn slight_segments_snap_flat_or_cylindrical() {
+        let flat = ProfileArc::Segment {
+            start: Point2::new(0.1575, -1.3611220880147127e-18),
+            end: Point2::new(0.315, 0.0),
+        };
+        let cylinder = ProfileArc::Segment {
+            start: Point2::new(0.5, 0.2),
+            end: Point2::new(0.5 + 2e-15, 0.9),
+        };
+        let real = ProfileArc::Segment {
+            start: Point2::new(0.1575, -1e-9),
+            end: Point2::new(0.315, 0.0),
+        };
+        for piece in [flat, cylinder] {
+            let p = Patch::new(piece);
+            let ProfileArc::Segment { start, end } = p.arc else {
+                panic!("a segment stays a segment");
+            };
+            assert!(start.y == end.y || start.x == end.x, "{:?}", p.arc);
+            let err = Patch::snap_error(&piece);
+            assert!(err > 0.0 && err <= 1e-15, "{err}");
+            for k in 0..=8 {
+                let s = k as f64 / 8.0;
+                let moved = (piece.point_at(s) - p.arc.point_at(s)).norm();
+                assert!(moved <= err, "{moved} > {err}");
+            }
+        }
+        assert_eq!(Patch::new(real).arc, real);
+        assert_eq!(Patch::snap_error(&real), 0.0);
     }
 }

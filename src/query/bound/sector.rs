@@ -22,139 +22,206 @@
 //! bound's error shrinks with the square of the sectors' size near a contact.
 
 use crate::bvh::patch::ProfileArc;
-use crate::num::norm2;
+use crate::num::{cross2, norm2};
 use crate::tolerances::BOUND_SLACK;
 use nalgebra::{Isometry3, Point2, Point3, Vector2, Vector3};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
+
+/// Unit vector at angle `t`.
+fn unit(t: f64) -> Vector2<f64> {
+    let (s, c) = t.sin_cos();
+    Vector2::new(c, s)
+}
+
+/// An interval of angles `[lo, lo + span]` (`0 <= span <= 2 pi`) with its end directions, to
+/// test whether a direction's angle lies in it without an arc tangent.
+#[derive(Debug, Clone, Copy)]
+struct AngleRange {
+    span: f64,
+    first: Vector2<f64>,
+    last: Vector2<f64>,
+}
+
+impl AngleRange {
+    fn new(lo: f64, span: f64) -> Self {
+        AngleRange {
+            span,
+            first: unit(lo),
+            last: unit(lo + span),
+        }
+    }
+
+    /// Whether the angle of the nonzero direction `d` lies in the range (closed). Up to a
+    /// rounding of the cross products, whose misjudgement near an end changes a support by
+    /// the square of an angle near 1e-16 (far inside [`BOUND_SLACK`]).
+    fn holds(&self, d: Vector2<f64>) -> bool {
+        if self.span >= TAU {
+            true
+        } else if self.span <= PI {
+            cross2(self.first, d) >= 0.0 && cross2(d, self.last) >= 0.0
+        } else {
+            // The complement, an open range of less than a half turn.
+            !(cross2(self.last, d) > 0.0 && cross2(d, self.first) > 0.0)
+        }
+    }
+}
+
+/// A profile sub-piece with what its support function needs (module doc).
+#[derive(Debug, Clone, Copy)]
+enum PieceShape {
+    Segment,
+    /// An arc: its radius and lowest-angle end point, and its range of polar angles.
+    Arc {
+        radius: f64,
+        lo_point: Point2<f64>,
+        range: AngleRange,
+    },
+}
 
 /// A sector of a patch: the profile sub-piece `piece` revolved over `angles = (t0, t1)`,
-/// `t0 <= t1 <= t0 + 2 pi`, in the patch's own frame.
+/// `t0 <= t1 <= t0 + 2 pi`, in the patch's own frame, with its end points, angle directions,
+/// middle point and normal computed once (every bound of a search reuses them).
 #[derive(Debug, Clone, Copy)]
 pub struct Sector {
     pub piece: ProfileArc,
     pub angles: (f64, f64),
-}
-
-/// Whether the angle `phi` lies in `[lo, lo + span]` modulo a full turn.
-fn angle_in(phi: f64, lo: f64, span: f64) -> bool {
-    (phi - lo).rem_euclid(TAU) <= span
-}
-
-/// Largest value of the planar linear function `c . (rho, z)` on `piece` (module doc).
-fn piece_support(piece: &ProfileArc, c: Vector2<f64>) -> f64 {
-    let at = |p: Point2<f64>| c.dot(&p.coords);
-    let ends = at(piece.start()).max(at(piece.end()));
-    match (*piece, piece.ascending_angles()) {
-        (ProfileArc::Arc { radius, center, .. }, Some((lo, span))) => {
-            let psi = c.y.atan2(c.x);
-            if angle_in(psi, lo, span) {
-                let lo_point = center + radius * Vector2::new(lo.cos(), lo.sin());
-                let half = 0.5 * (psi - lo);
-                at(lo_point) + 2.0 * radius * c.norm() * half.sin() * half.sin()
-            } else {
-                ends
-            }
-        }
-        _ => ends,
-    }
+    start: Point2<f64>,
+    end: Point2<f64>,
+    shape: PieceShape,
+    turn: AngleRange,
+    middle: Point3<f64>,
+    middle_normal: Vector3<f64>,
+    max_rho: f64,
 }
 
 impl Sector {
+    /// The sector of `piece` over `angles`.
+    pub fn new(piece: ProfileArc, angles: (f64, f64)) -> Self {
+        let shape = match (piece, piece.ascending_angles()) {
+            (ProfileArc::Arc { center, radius, .. }, Some((lo, span))) => PieceShape::Arc {
+                radius,
+                lo_point: center + radius * unit(lo),
+                range: AngleRange::new(lo, span),
+            },
+            _ => PieceShape::Segment,
+        };
+        let t_mid = 0.5 * (angles.0 + angles.1);
+        let (e_mid, m, tangent) = (unit(t_mid), piece.point_at(0.5), piece.tangent_at(0.5));
+        let mut sector = Sector {
+            piece,
+            angles,
+            start: piece.start(),
+            end: piece.end(),
+            shape,
+            turn: AngleRange::new(angles.0, angles.1 - angles.0),
+            middle: Point3::new(m.x * e_mid.x, m.x * e_mid.y, m.y),
+            // The profile normal (tangent turned a quarter), lifted to the meridian plane.
+            middle_normal: Vector3::new(tangent.y * e_mid.x, tangent.y * e_mid.y, -tangent.x),
+            max_rho: 0.0,
+        };
+        sector.max_rho = sector.piece_support(Vector2::new(1.0, 0.0)).max(0.0);
+        sector
+    }
+
     /// The whole patch of `piece` split into `n` sectors of equal angle.
     pub fn full_turn(piece: ProfileArc, n: usize) -> impl Iterator<Item = Sector> {
-        (0..n).map(move |i| Sector {
-            piece,
-            angles: (TAU * i as f64 / n as f64, TAU * (i + 1) as f64 / n as f64),
+        (0..n).map(move |i| {
+            Sector::new(
+                piece,
+                (TAU * i as f64 / n as f64, TAU * (i + 1) as f64 / n as f64),
+            )
         })
     }
 
-    /// Largest and smallest of `w_x cos t + w_y sin t` over the sector's angles.
-    fn angular_range(&self, w: &Vector3<f64>) -> (f64, f64) {
-        let (t0, t1) = self.angles;
+    /// Largest value of the planar linear function `c . (rho, z)` on the sub-piece (module
+    /// doc): an end, or the arc's point whose radius points along `c`, measured from the
+    /// lowest-angle end as `r |c| |u - e_lo|^2 / 2` (`u`, `e_lo` the unit radii), which
+    /// does not cancel.
+    fn piece_support(&self, c: Vector2<f64>) -> f64 {
+        let at = |p: Point2<f64>| c.dot(&p.coords);
+        let ends = at(self.start).max(at(self.end));
+        match self.shape {
+            PieceShape::Arc {
+                radius,
+                lo_point,
+                range,
+            } => {
+                let norm = c.norm();
+                if norm > 0.0 && range.holds(c) {
+                    let gap = (c / norm - range.first).norm_squared();
+                    at(lo_point) + 0.5 * radius * norm * gap
+                } else {
+                    ends
+                }
+            }
+            PieceShape::Segment => ends,
+        }
+    }
+
+    /// Largest `w_x cos t + w_y sin t` over the sector's angles.
+    fn angular_max(&self, w: &Vector3<f64>) -> f64 {
+        let d = Vector2::new(w.x, w.y);
         let m = norm2(w.x, w.y);
         if m == 0.0 {
-            return (0.0, 0.0);
-        }
-        let psi = w.y.atan2(w.x);
-        let f = |t: f64| w.x * t.cos() + w.y * t.sin();
-        let (f0, f1) = (f(t0), f(t1));
-        let span = t1 - t0;
-        let hi = if angle_in(psi, t0, span) {
+            0.0
+        } else if self.turn.holds(d) {
             m
         } else {
-            f0.max(f1)
-        };
-        let lo = if angle_in(psi + std::f64::consts::PI, t0, span) {
-            -m
-        } else {
-            f0.min(f1)
-        };
-        (hi, lo)
+            d.dot(&self.turn.first).max(d.dot(&self.turn.last))
+        }
     }
 
     /// `max w . x` over the sector (its own frame; module doc). Profile points have
     /// `rho >= 0` up to rounding (a sphere's pole at `rho ~ 1e-17`), so the largest value
     /// over the angles is `rho` times the largest of the angular factor.
     pub fn support(&self, w: &Vector3<f64>) -> f64 {
-        let (hi, _) = self.angular_range(w);
-        piece_support(&self.piece, Vector2::new(hi, w.z))
+        self.piece_support(Vector2::new(self.angular_max(w), w.z))
     }
 
     /// Largest `rho` of the sector.
     pub fn max_rho(&self) -> f64 {
-        piece_support(&self.piece, Vector2::new(1.0, 0.0)).max(0.0)
+        self.max_rho
     }
 
     /// The sector's middle point (middle parameter and middle angle).
     pub fn middle(&self) -> Point3<f64> {
-        let m = self.piece.point_at(0.5);
-        let t = 0.5 * (self.angles.0 + self.angles.1);
-        Point3::new(m.x * t.cos(), m.x * t.sin(), m.y)
+        self.middle
     }
 
     /// The surface normal line's direction at [`Sector::middle`] (unsigned).
     pub fn middle_normal(&self) -> Vector3<f64> {
-        let tangent = self.piece.tangent_at(0.5);
-        let t = 0.5 * (self.angles.0 + self.angles.1);
-        // The profile normal (tangent turned a quarter), lifted to the meridian plane.
-        Vector3::new(tangent.y * t.cos(), tangent.y * t.sin(), -tangent.x)
+        self.middle_normal
     }
 
     /// A radius about [`Sector::middle`] that holds the whole sector: half the profile
     /// length (along the meridian) plus half the widest parallel's arc (along it).
     pub fn radius(&self) -> f64 {
-        0.5 * (self.piece.length() + self.max_rho() * (self.angles.1 - self.angles.0))
+        let (profile, parallel) = self.extents();
+        0.5 * (profile + parallel)
     }
 
     /// The size of the sector's two extents: (profile length, widest parallel's arc).
     pub fn extents(&self) -> (f64, f64) {
         (
             self.piece.length(),
-            self.max_rho() * (self.angles.1 - self.angles.0),
+            self.max_rho * (self.angles.1 - self.angles.0),
         )
     }
 
     /// The sector split in two along its profile (`true`) or its angles (`false`).
     pub fn halves(&self, along_profile: bool) -> [Sector; 2] {
         if along_profile {
-            [0.0, 0.5].map(|s| Sector {
-                piece: self.piece.sub_piece(s, s + 0.5),
-                angles: self.angles,
-            })
+            [0.0, 0.5].map(|s| Sector::new(self.piece.sub_piece(s, s + 0.5), self.angles))
         } else {
             let (t0, t1) = self.angles;
             let m = 0.5 * (t0 + t1);
-            [(t0, m), (m, t1)].map(|angles| Sector {
-                piece: self.piece,
-                angles,
-            })
+            [(t0, m), (m, t1)].map(|angles| Sector::new(self.piece, angles))
         }
     }
 
     /// The size used for the rounding slack: the largest coordinate magnitude.
     fn scale(&self) -> f64 {
-        let d = self.piece.bounding_disk();
-        d.center.coords.norm() + d.radius
+        self.start.coords.norm().max(self.end.coords.norm()) + self.piece.length()
     }
 }
 
@@ -241,10 +308,7 @@ mod tests {
         let piece = random_piece(f, is_arc);
         let t0 = TAU * f();
         let span = if f() < 0.3 { TAU } else { TAU * f() * f() };
-        Sector {
-            piece,
-            angles: (t0, t0 + span),
-        }
+        Sector::new(piece, (t0, t0 + span))
     }
 
     fn sample(s: &Sector, u: f64, v: f64) -> Point3<f64> {

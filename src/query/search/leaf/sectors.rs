@@ -30,12 +30,13 @@ use std::collections::BinaryHeap;
 /// wider sector says little about its far side).
 const INITIAL_SECTORS: usize = 4;
 
-/// One queued pair of sectors with its lower bound.
+/// One queued pair of sectors (indices into the search's list of sectors: a cell stays
+/// small, the heap moves it often) with its lower bound.
 #[derive(Debug, Clone, Copy)]
 struct Cell {
     key: f64,
-    a: Sector,
-    b: Sector,
+    a: u32,
+    b: u32,
     radii: f64,
 }
 
@@ -91,17 +92,23 @@ pub fn sector_lower_bound(
     if upper <= precision {
         return upper.min(0.0);
     }
-    let cell = |sa: Sector, sb: Sector, parent: f64| Cell {
-        key: parent.max(sector_pair_bound(&sa, &sb, pos_ab, dir)),
-        a: sa,
-        b: sb,
-        radii: sa.radius() + sb.radius(),
+    let mut sectors: Vec<Sector> = Vec::new();
+    let cell = |sa: usize, sb: usize, parent: f64, sectors: &[Sector]| {
+        let (a, b) = (&sectors[sa], &sectors[sb]);
+        Cell {
+            key: parent.max(sector_pair_bound(a, b, pos_ab, dir)),
+            a: sa as u32,
+            b: sb as u32,
+            radii: a.radius() + b.radius(),
+        }
     };
+    sectors.extend(initial_sectors(a));
+    let first_b = sectors.len();
+    sectors.extend(initial_sectors(b));
     let mut heap = BinaryHeap::new();
-    let bs = initial_sectors(b);
-    for sa in initial_sectors(a) {
-        for sb in &bs {
-            heap.push(cell(sa, *sb, f64::NEG_INFINITY));
+    for ia in 0..first_b {
+        for ib in first_b..sectors.len() {
+            heap.push(cell(ia, ib, f64::NEG_INFINITY, &sectors));
         }
     }
     let mut computed = heap.len();
@@ -110,15 +117,23 @@ pub fn sector_lower_bound(
         if c.key >= upper - precision || fine || computed >= max_cells {
             return c.key.min(upper);
         }
-        let (ea, eb) = (c.a.extents(), c.b.extents());
-        if ea.0.max(ea.1) >= eb.0.max(eb.1) {
-            for sa in c.a.halves(ea.0 >= ea.1) {
-                heap.push(cell(sa, c.b, c.key));
-            }
+        let (sa, sb) = (sectors[c.a as usize], sectors[c.b as usize]);
+        let (ea, eb) = (sa.extents(), sb.extents());
+        let split_a = ea.0.max(ea.1) >= eb.0.max(eb.1);
+        let halves = if split_a {
+            sa.halves(ea.0 >= ea.1)
         } else {
-            for sb in c.b.halves(eb.0 >= eb.1) {
-                heap.push(cell(c.a, sb, c.key));
-            }
+            sb.halves(eb.0 >= eb.1)
+        };
+        for half in halves {
+            sectors.push(half);
+            let new = sectors.len() - 1;
+            let (ia, ib) = if split_a {
+                (new, c.b as usize)
+            } else {
+                (c.a as usize, new)
+            };
+            heap.push(cell(ia, ib, c.key, &sectors));
         }
         computed += 2;
     }

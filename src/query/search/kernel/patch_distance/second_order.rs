@@ -24,6 +24,16 @@
 //! closed forms for a surface of revolution: curvature `1 / r` along the meridian of an arc
 //! (0 for a segment) and `n_rho / rho` along the parallel (Meusnier), with respect to the
 //! outward-from-core normal.
+//!
+//! **Reach.** A lens region lies inside its patch, enclosed by the crossing loop, whose
+//! points all lie on the other patch. If the pair `(p, q)` of length `d` were the region's
+//! extremum, `q` would be `p`'s nearest point of the other patch, so every loop point would be
+//! at least `d` from `p`; and every path on the patch from `p` to a boundary parallel must
+//! cross the loop. The meridian from `p` to its nearer end is such a path, and all of it lies
+//! within its arc length of `p`: when that arc length is below `d`, `p` is not the extremum
+//! of a lens on its patch, whatever the curvatures say. This clears the far side of a ring
+//! wrapped about a thinner solid (a common normal 0.72 long across a piece 0.25 long), whose
+//! distance along the ring is a true local maximum.
 
 use super::*;
 use nalgebra::{Matrix2, Matrix3};
@@ -34,6 +44,11 @@ use nalgebra::{Matrix2, Matrix3};
 /// the pair's direction is a root refined to about 1e-12; a pair closer to degenerate than
 /// 1e-9 is treated as a possible lens (the safe side: the caller then subdivides).
 const LENS_MARGIN: f64 = 1e-9;
+
+/// Relative margin of the reach test ([`reaches_boundary_within`]): the arc length to the
+/// nearer boundary, computed from a parameter placed to about 1e-15 and a closed-form length,
+/// must fall short of the pair's length by this fraction (plus as much of the point's size).
+const REACH_MARGIN: f64 = 1e-9;
 
 /// A common normal's direction must agree with each surface normal to this cosine defect
 /// for the second-order expansion to apply (a pair that is not a common normal to this
@@ -113,6 +128,14 @@ pub(super) fn may_be_lens_extremum(
     if d <= 0.0 || !d.is_finite() {
         return true;
     }
+    // Sides whose lens region could not fit inside the patch (module doc, "Reach").
+    let (short_a, short_b) = (
+        reaches_boundary_within(a, p, d),
+        reaches_boundary_within(b, &(pos_ba * q), d),
+    );
+    if short_a && short_b {
+        return false;
+    }
     let w = v / d;
     let Some((n_a, k_a)) = normal_and_shape(a, p) else {
         return true;
@@ -157,5 +180,33 @@ pub(super) fn may_be_lens_extremum(
         m.try_inverse().map(|inv| s_moving + s_following * inv)
     };
     let maximum_along = |r: Option<Matrix2<f64>>| r.is_none_or(|r| eigen_range(&r).1 <= margin);
-    maximum_along(reduced(&s_a, &s_b)) || maximum_along(reduced(&s_b, &s_a))
+    (!short_a && maximum_along(reduced(&s_a, &s_b)))
+        || (!short_b && maximum_along(reduced(&s_b, &s_a)))
+}
+
+/// Whether the meridian of `patch` through its surface point `x` (patch frame) reaches a
+/// boundary parallel within arc length `reach` (less [`REACH_MARGIN`]): then every point of
+/// that meridian arc is nearer to `x` than `reach` (module doc, "Reach"). `false` when `x`'s
+/// parameter cannot be placed on the piece.
+fn reaches_boundary_within(patch: &Patch, x: &Point3<f64>, reach: f64) -> bool {
+    let m = Point2::new(norm2(x.x, x.y), x.z);
+    let s = match patch.arc {
+        ProfileArc::Arc { center, .. } => {
+            let r = m - center;
+            match patch.arc.arc_param(r.y.atan2(r.x)) {
+                Some(s) => s,
+                None => return false,
+            }
+        }
+        ProfileArc::Segment { start, end } => {
+            let e = end - start;
+            let l2 = e.norm_squared();
+            if l2 == 0.0 {
+                return false;
+            }
+            ((m - start).dot(&e) / l2).clamp(0.0, 1.0)
+        }
+    };
+    let to_end = s.min(1.0 - s) * patch.arc.length();
+    to_end * (1.0 + REACH_MARGIN) + REACH_MARGIN * (1.0 + x.coords.norm()) < reach
 }

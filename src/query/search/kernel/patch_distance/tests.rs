@@ -348,3 +348,46 @@ fn cone_tip_through_a_nearly_flat_annulus_crosses() {
     let d = patch_distance(&annulus, &tip, &pos.inverse());
     assert!(d.distance <= 1e-12, "{}", d.distance);
 }
+
+/// A ring's piece wrapped about a bottle's neck (a nearly straight arc of radius 6,073),
+/// 2.0e-4 apart on one side: the common normal across the neck, 0.72 long, is a local
+/// maximum of the distance along the ring, and the second-order lens test flagged it, sending
+/// the pair to subdivision (campaign seed 20261128, shard 4). Both pieces are shorter than
+/// that normal, so no crossing lens can have it as its extremum (`second_order.rs`, "Reach"):
+/// the answer is exact.
+#[test]
+fn far_side_of_a_ring_is_no_lens() {
+    let neck = Patch::new(ProfileArc::Arc {
+        center: Point2::new(-6072.987678786061, 0.48441217474033255),
+        radius: 6073.3476809045005,
+        phi_start: 0.0,
+        sweep: 4.032664654662406e-5,
+    });
+    let ring = Patch::new(ProfileArc::Arc {
+        center: Point2::new(1.2326894217625468, -0.13472827249694064),
+        radius: 0.5518571889543366,
+        phi_start: -1.718346232781196,
+        sweep: 0.009841826080321601,
+    });
+    let rot = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+        -0.6288193470402367,
+        -0.5205210437682127,
+        -0.5320044605998354,
+        -0.22497850049331133,
+    ));
+    let pos = Isometry3::from_parts(
+        Translation3::new(
+            1.1502920205895724,
+            0.25118364298827495,
+            -0.36013618444839623,
+        ),
+        rot,
+    );
+    let d = patch_distance(&neck, &ring, &pos);
+    assert!(!d.sampled, "{d:?}");
+    assert!(
+        d.interior_pairs.iter().any(|(p, q)| (q - p).norm() > 0.7),
+        "the far-side normal is among the candidates"
+    );
+    check(&neck, &ring, &pos, "neck-ring");
+}
