@@ -4,9 +4,10 @@
 //! use; its violations are marked "warm start").
 
 use super::cases::Case;
+use super::panics::panic_message;
 use super::pool::Shape;
 use super::pose_spec::PoseSpec;
-use super::run::{panic_message, TreeCache};
+use super::tree_cache::TreeCache;
 use crate::oracle::{self, check, refine_hint, surface_distance, CheckInput, OracleOptions};
 use crate::oracle::{OracleResult, PlanarIndex};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};

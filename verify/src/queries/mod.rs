@@ -20,6 +20,8 @@
 //!   profiles frozen beside it;
 //! * `regressions.rs`: the fixed cases, on the pool's shapes;
 //! * `checked_query.rs`: one query, its oracle and its checks (cold and warm-started);
+//! * `tree_cache.rs`: the trees, built once per (shape, eps) and shared by the workers;
+//! * `panics.rs`: a caught panic's message and location;
 //! * `run.rs`: the campaign over worker threads, with panics caught;
 //! * `report.rs`: the summary, reproducers and the report text.
 
@@ -28,12 +30,14 @@ mod checked_query;
 mod corners;
 mod frozen;
 pub mod merge;
+mod panics;
 mod placement;
 mod pool;
 mod pose_spec;
 mod regressions;
 mod report;
 mod run;
+mod tree_cache;
 
 pub use cases::{make_case, Case, PoseKind};
 pub use checked_query::{single, CaseResult};
