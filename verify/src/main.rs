@@ -430,7 +430,7 @@ fn crosscheck_command(
         eprintln!("error: --poses, --convex-poses and --occt-poses are all 0: nothing to check");
         return 2;
     }
-    let mut occt_pairs = verify::crosscheck::occt::occt_pairs();
+    let mut occt_pairs = verify::crosscheck::occt_pairs::occt_pairs();
     if let Some(only) = &occt.only {
         occt_pairs.retain(|(a, b)| a.contains(only.as_str()) || b.contains(only.as_str()));
         if occt_pairs.is_empty() {

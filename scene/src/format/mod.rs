@@ -102,6 +102,7 @@
 
 mod error;
 mod generators;
+mod load;
 mod model;
 mod reach;
 mod spec;

@@ -1,11 +1,8 @@
 //! A checked scene: bodies with their shapes, effects and poses, what to measure, rendering
 //! and dynamics settings.
 
-use super::error::SceneError;
-use super::spec::SceneSpec;
-use super::validate::check_scene;
 use nalgebra::{Isometry3, Vector3};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Checked render settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -142,31 +139,6 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Reads and checks a scene file; profile paths are resolved against its directory.
-    pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let base = path.parent().unwrap_or(Path::new("."));
-        Scene::parse(&text, base).map_err(|e| match e {
-            SceneError::Syntax { message, .. } => SceneError::Syntax {
-                path: path.to_path_buf(),
-                message,
-            },
-            e => e,
-        })
-    }
-
-    /// Parses and checks scene text; relative profile paths are resolved against `base`.
-    pub fn parse(text: &str, base: &Path) -> Result<Scene, SceneError> {
-        let spec: SceneSpec = toml::from_str(text).map_err(|e| SceneError::Syntax {
-            path: PathBuf::from("<scene>"),
-            message: e.to_string(),
-        })?;
-        check_scene(spec, base)
-    }
-
     /// Number of frames: times `0, dt, 2 dt, ...` up to the duration.
     pub fn frames(&self) -> usize {
         (self.duration / self.time_step + 1e-9).floor() as usize + 1

@@ -4,7 +4,7 @@
 
 use super::criterion::{judge, judge_penetration, Baseline, Certified, SLACK_REL};
 use super::poses::PoseKind;
-use super::report::{CaseContext, CaseRecord, Check};
+use super::record::{CaseContext, CaseRecord, Check};
 use super::shapes::{scale, Prepared};
 use crate::baselines::{ccd, cgal};
 use crate::queries::PoseSpec;

@@ -70,10 +70,12 @@
 pub mod convex;
 pub mod criterion;
 pub mod occt;
+pub mod occt_pairs;
 pub mod occt_times;
 pub mod options;
 pub mod poses;
 mod raw;
+pub mod record;
 pub mod report;
 pub mod runner;
 pub mod shapes;

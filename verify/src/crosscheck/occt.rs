@@ -41,7 +41,7 @@
 use super::criterion::{judge, Baseline, Certified, Verdict, SLACK_REL};
 use super::options::Options;
 use super::poses::{make_pose_in, PoseKind, PoseTarget};
-use super::report::{CaseContext, CaseRecord, Check};
+use super::record::{CaseContext, CaseRecord, Check};
 use crate::baselines::occt::{thread_cpu_time, OcctSolid, OCCT_TOLERANCE};
 use nalgebra::{Isometry3, Point3};
 use revdist::bvh::containment::point_in_solid;
@@ -77,38 +77,6 @@ pub const OCCT_FALSE_INNER: &str = "occt-false-inner";
 /// OCCT's tolerance when it classifies a vertex against a solid
 /// (`BRepExtrema_DistShapeShape::Perform`, 7.6: `tol = 0.001`).
 pub const OCCT_INNER_TOLERANCE: f64 = 1e-3;
-
-/// Which family a pair belongs to (for the timing table).
-pub fn family(a: &str, b: &str) -> &'static str {
-    if a.starts_with(revdist::models::MORPH_PREFIX) || b.starts_with(revdist::models::MORPH_PREFIX)
-    {
-        "M_t frames"
-    } else if a.ends_with("_ff") || b.ends_with("_ff") {
-        "freeform"
-    } else {
-        "exact"
-    }
-}
-
-/// The 15 pairs of the paper models, the 15 of their freeform variants, then each M_t frame
-/// against each paper model.
-pub fn occt_pairs() -> Vec<(String, String)> {
-    use super::shapes::{MORPH_FRAMES, PAPER_MODELS};
-    let mut v = Vec::new();
-    for models in [&PAPER_MODELS[..], &revdist::models::FREEFORM_NAMES[..]] {
-        for (i, a) in models.iter().enumerate() {
-            for b in &models[i..] {
-                v.push((a.to_string(), b.to_string()));
-            }
-        }
-    }
-    for m in MORPH_FRAMES {
-        for b in PAPER_MODELS {
-            v.push((m.to_string(), b.to_string()));
-        }
-    }
-    v
-}
 
 /// One model: its profile and a revdist solid per eps of the sweep.
 struct Shape {

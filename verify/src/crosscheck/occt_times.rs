@@ -1,8 +1,8 @@
 //! OCCT's time per query in the cross-check report: the median per pair and per family
 //! (exact, freeform, M_t frames), beside revdist's median at each eps of the sweep.
 
-use super::occt::family;
-use super::report::{CaseRecord, Check, Report};
+use super::occt_pairs::family;
+use super::record::{CaseRecord, Check};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -48,12 +48,8 @@ type Grouped = (
 );
 
 /// The OCCT records' times, grouped; `None` without any.
-fn collect(report: &Report) -> Option<Grouped> {
-    let occt: Vec<&CaseRecord> = report
-        .records
-        .iter()
-        .filter(|r| r.check == Check::Occt)
-        .collect();
+fn collect(records: &[CaseRecord]) -> Option<Grouped> {
+    let occt: Vec<&CaseRecord> = records.iter().filter(|r| r.check == Check::Occt).collect();
     let first = occt.first()?.eps.to_bits();
     let mut eps: Vec<u64> = occt.iter().map(|r| r.eps.to_bits()).collect();
     eps.sort_by(|x, y| f64::from_bits(*y).total_cmp(&f64::from_bits(*x)));
@@ -74,8 +70,8 @@ fn collect(report: &Report) -> Option<Grouped> {
 }
 
 /// The Markdown section (empty without OCCT records).
-pub fn markdown(report: &Report) -> String {
-    let Some((pairs, families, eps)) = collect(report) else {
+pub fn markdown(records: &[CaseRecord]) -> String {
+    let Some((pairs, families, eps)) = collect(records) else {
         return String::new();
     };
     let mut s = String::from(
@@ -121,8 +117,8 @@ pub fn markdown(report: &Report) -> String {
 }
 
 /// `a,b,family,poses,occt_median_ms,revdist_median_ms_eps...` (empty without OCCT records).
-pub fn csv(report: &Report) -> String {
-    let Some((pairs, _, eps)) = collect(report) else {
+pub fn csv(records: &[CaseRecord]) -> String {
+    let Some((pairs, _, eps)) = collect(records) else {
         return String::new();
     };
     let mut s = String::from("a,b,family,poses,occt_median_ms");

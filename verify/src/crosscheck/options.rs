@@ -33,7 +33,7 @@ pub struct Options {
     pub occt_poses: usize,
     /// Eps of revdist's trees judged against each OCCT answer.
     pub occt_eps: Vec<f64>,
-    /// Pairs of the OCCT sweep (default: [`super::occt::occt_pairs`]).
+    /// Pairs of the OCCT sweep (default: [`super::occt_pairs::occt_pairs`]).
     pub occt_pairs: Vec<(String, String)>,
     /// Run only this shard's jobs ([`super::runner::run_units`] numbers them).
     pub shard: Option<crate::shard::Shard>,
@@ -51,7 +51,7 @@ impl Default for Options {
             convex_pairs: convex_pairs(),
             occt_poses: DEFAULT_OCCT_POSES,
             occt_eps: DEFAULT_OCCT_EPS.to_vec(),
-            occt_pairs: super::occt::occt_pairs(),
+            occt_pairs: super::occt_pairs::occt_pairs(),
             shard: None,
         }
     }

@@ -3,7 +3,7 @@
 
 use super::criterion::{Judgement, Verdict};
 use super::poses::PoseKind;
-use super::report::{CaseRecord, Check};
+use super::record::{CaseRecord, Check};
 use crate::queries::PoseSpec;
 use crate::shard::{Cells, Field, Record, Scalar};
 

@@ -3,9 +3,11 @@
 //! warm-started from a nearby pose's best leaf pair (the frame coherence motion sequences
 //! use; its violations are marked "warm start").
 
-use super::cases::{Case, PoseSpec};
+use super::cases::Case;
+use super::panics::panic_message;
 use super::pool::Shape;
-use super::run::{panic_message, TreeCache};
+use super::pose_spec::PoseSpec;
+use super::tree_cache::TreeCache;
 use crate::oracle::{self, check, refine_hint, surface_distance, CheckInput, OracleOptions};
 use crate::oracle::{OracleResult, PlanarIndex};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};

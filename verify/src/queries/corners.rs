@@ -8,9 +8,9 @@
 //! nothing here depends on the query's trees. Whether the two solids really touch only at
 //! the chosen points is not assumed: the oracle decides the truth of every case.
 
-use super::cases::PoseSpec;
 use super::placement::spec;
 use super::pool::Shape;
+use super::pose_spec::PoseSpec;
 use crate::contact::contact_pose;
 use nalgebra::{Point2, Vector2, Vector3};
 use revdist::nurbs::NurbsCurve;

@@ -3,8 +3,8 @@
 //! secant or bisection once the target is passed; a touching target never accepts a
 //! realised 0, which would be a crossing).
 
-use super::cases::PoseSpec;
 use super::pool::Shape;
+use super::pose_spec::PoseSpec;
 use crate::oracle::{surface_distance, OracleOptions};
 use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 use revdist::rng::SplitMix64;

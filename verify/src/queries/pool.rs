@@ -1,7 +1,7 @@
 //! The shapes cases draw from: built-in models, M_t frames, the frozen and seeded random
 //! profiles, and the balls and solid tori of the primitive campaign.
 
-use super::regressions::frozen_profiles;
+use super::frozen::frozen_profiles;
 use crate::oracle::{self, PlanarIndex};
 use crate::random_profiles::random_profile;
 use revdist::profile::Profile;

@@ -4,13 +4,13 @@
 
 use super::cases::{make_case, Case, PoseKind};
 use super::checked_query::run_case;
-use super::pool::{build_pool, Shape, ShapeSet};
+use super::panics::{panic_message, record_panic_location};
+use super::pool::{build_pool, ShapeSet};
 use super::regressions::regression_cases;
 use super::report::Summary;
-use revdist::solid::Solid;
-use std::collections::HashMap;
+use super::tree_cache::TreeCache;
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 /// Default tree eps values drawn from.
@@ -75,58 +75,11 @@ impl Default for CampaignOptions {
     }
 }
 
-/// A tree built once, shared by the workers that need it.
-type TreeSlot = Arc<OnceLock<Result<Solid, String>>>;
-
-/// Trees built so far, shared by the workers: one build per (shape, eps bits).
-#[derive(Default)]
-pub(super) struct TreeCache {
-    map: Mutex<HashMap<(usize, u64), TreeSlot>>,
-}
-
-impl TreeCache {
-    pub(super) fn get(&self, shapes: &[Shape], k: usize, eps: f64) -> Result<Solid, String> {
-        let cell = {
-            let mut m = self.map.lock().expect("not poisoned");
-            Arc::clone(m.entry((k, eps.to_bits())).or_default())
-        };
-        cell.get_or_init(|| {
-            Solid::from_profile(Arc::clone(&shapes[k].profile), eps)
-                .map_err(|e| format!("tree of '{}' at eps {eps:e}: {e}", shapes[k].name))
-        })
-        .clone()
-    }
-}
-
-thread_local! {
-    /// Location of the last panic on this thread (set by the campaign's panic hook).
-    static PANIC_LOCATION: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
-}
-
-/// A panic payload as text, with the location the hook recorded.
-pub(super) fn panic_message(e: &(dyn std::any::Any + Send)) -> String {
-    let msg = if let Some(s) = e.downcast_ref::<&str>() {
-        s.to_string()
-    } else if let Some(s) = e.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "non-string panic payload".to_string()
-    };
-    let loc = PANIC_LOCATION.with(|l| l.borrow().clone());
-    format!("{msg} at {loc}")
-}
-
 /// Runs the campaign. Panics inside queries are caught and reported as failures (the panic
 /// hook is replaced by a silent one that records the location while the campaign runs).
 pub fn run(opts: &CampaignOptions) -> Summary {
     let previous = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|info| {
-        let loc = info
-            .location()
-            .map(|l| format!("{}:{}", l.file(), l.line()))
-            .unwrap_or_default();
-        PANIC_LOCATION.with(|l| *l.borrow_mut() = loc);
-    }));
+    std::panic::set_hook(Box::new(record_panic_location));
     let s = run_inner(opts);
     std::panic::set_hook(previous);
     s
