@@ -20,59 +20,22 @@
 //! within `precision` of the distance between its sectors, the line of their middles being
 //! one of the directions tried), or after `max_cells` bounds.
 
+use super::subdivision::{initial_ranges, Cell};
 use crate::bvh::patch::ProfileArc;
 use crate::query::bound::sector::{sector_pair_bound, Sector};
 use nalgebra::{Isometry3, Vector3};
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 /// Angle intervals each patch starts from (a quarter turn each: the middle normal of a
 /// wider sector says little about its far side).
 const INITIAL_SECTORS: usize = 4;
 
-/// One queued pair of sectors (indices into the search's list of sectors: a cell stays
-/// small, the heap moves it often) with its lower bound.
-#[derive(Debug, Clone, Copy)]
-struct Cell {
-    key: f64,
-    a: u32,
-    b: u32,
-    radii: f64,
-}
-
-impl PartialEq for Cell {
-    fn eq(&self, o: &Self) -> bool {
-        self.key == o.key
-    }
-}
-impl Eq for Cell {}
-impl PartialOrd for Cell {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Cell {
-    /// Smallest key first (BinaryHeap is a max-heap).
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.key.total_cmp(&self.key)
-    }
-}
-
-/// A piece cut so that no part sweeps more than a quarter turn, then each revolved over
-/// [`INITIAL_SECTORS`] angle intervals.
+/// A piece cut into the profile subdivision's initial ranges (no part sweeping more than a
+/// quarter turn), each revolved over [`INITIAL_SECTORS`] angle intervals.
 fn initial_sectors(p: &ProfileArc) -> Vec<Sector> {
-    let n = match *p {
-        ProfileArc::Arc { sweep, .. } => {
-            (sweep.abs() / std::f64::consts::FRAC_PI_2).ceil() as usize
-        }
-        ProfileArc::Segment { .. } => 1,
-    }
-    .max(1);
-    (0..n)
-        .flat_map(|i| {
-            let piece = p.sub_piece(i as f64 / n as f64, (i + 1) as f64 / n as f64);
-            Sector::full_turn(piece, INITIAL_SECTORS)
-        })
+    initial_ranges(p)
+        .into_iter()
+        .flat_map(|(s0, s1)| Sector::full_turn(p.sub_piece(s0, s1), INITIAL_SECTORS))
         .collect()
 }
 
@@ -93,7 +56,7 @@ pub fn sector_lower_bound(
         return upper.min(0.0);
     }
     let mut sectors: Vec<Sector> = Vec::new();
-    let cell = |sa: usize, sb: usize, parent: f64, sectors: &[Sector]| {
+    let cell = |sa: usize, sb: usize, parent: f64, sectors: &[Sector]| -> Cell<u32> {
         let (a, b) = (&sectors[sa], &sectors[sb]);
         Cell {
             key: parent.max(sector_pair_bound(a, b, pos_ab, dir)),

@@ -38,36 +38,37 @@ use std::collections::BinaryHeap;
 /// fallback is rare (degenerate poses), and a bound cut short stays valid, only looser.
 pub const CERTIFY_MAX_PAIRS: usize = 4096;
 
-/// One queued pair of sub-pieces with its lower bound.
+/// One queued pair of pieces (`T`: sub-piece ranges here, sector indices in
+/// [`super::sectors`]) with its lower bound and the sum of their radii.
 #[derive(Debug, Clone, Copy)]
-struct Cell {
-    key: f64,
-    a: (f64, f64),
-    b: (f64, f64),
-    radii: f64,
+pub(super) struct Cell<T> {
+    pub key: f64,
+    pub a: T,
+    pub b: T,
+    pub radii: f64,
 }
 
-impl PartialEq for Cell {
+impl<T> PartialEq for Cell<T> {
     fn eq(&self, o: &Self) -> bool {
         self.key == o.key
     }
 }
-impl Eq for Cell {}
-impl PartialOrd for Cell {
+impl<T> Eq for Cell<T> {}
+impl<T> PartialOrd for Cell<T> {
     fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
         Some(self.cmp(o))
     }
 }
-impl Ord for Cell {
+impl<T> Ord for Cell<T> {
     /// Smallest key first (BinaryHeap is a max-heap).
     fn cmp(&self, o: &Self) -> Ordering {
         o.key.total_cmp(&self.key)
     }
 }
 
-/// A piece split so that no part sweeps more than a half turn (so that its disk is the
+/// A piece split so that no part sweeps more than a quarter turn (so that its disk is the
 /// chord's Thales disk, not the full circle).
-fn initial_ranges(p: &ProfileArc) -> Vec<(f64, f64)> {
+pub(super) fn initial_ranges(p: &ProfileArc) -> Vec<(f64, f64)> {
     let n = match *p {
         ProfileArc::Arc { sweep, .. } => {
             (sweep.abs() / std::f64::consts::FRAC_PI_2).ceil() as usize
