@@ -17,6 +17,7 @@ pub mod bvh;
 pub mod circle;
 pub mod limits;
 pub mod models;
+pub mod nearest;
 pub mod num;
 pub mod nurbs;
 pub mod poly;

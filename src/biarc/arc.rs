@@ -1,6 +1,7 @@
 //! Planar circular arcs in the (rho, z) half-plane with signed curvature; `k = 0` is a segment
 //! (paper section 4.1: the arcs of a biarc, revolved into toroidal patches).
 
+use crate::nearest::NearestPoint;
 use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
@@ -206,19 +207,10 @@ impl Arc {
         }
     }
 
-    /// Euclidean distance from `p` to the arc (the closed point set).
-    pub fn distance_to_point(&self, p: Point2<f64>) -> f64 {
-        let to_ends = (p - self.start).norm().min((p - self.end).norm());
-        if self.is_segment() {
-            let d = self.end - self.start;
-            let len_sq = d.norm_squared();
-            let u = ((p - self.start).dot(&d) / len_sq).clamp(0.0, 1.0);
-            return (p - (self.start + d * u)).norm();
-        }
-        let k = self.curvature;
-        let n = perp(self.start_tangent);
-        let a = p - self.start;
-        let in_range = if self.sweep.abs() > POLAR_SWEEP {
+    /// Whether the foot of `p` on the arc's circle lies on the arc (else an end of the arc is
+    /// its nearest point). Not for segments.
+    fn foot_on_arc(&self, p: Point2<f64>) -> bool {
+        if self.sweep.abs() > POLAR_SWEEP {
             let c = self.center().unwrap_or(self.start);
             let d0 = self.start - c;
             let dp = p - c;
@@ -239,18 +231,70 @@ impl Arc {
                 Vector2::new(c * t.x - s * t.y, s * t.x + c * t.y)
             };
             // Unit vector from the centre to the midpoint.
+            let k = self.curvature;
             let u = -perp(mid_t) * k.signum();
-            a.dot(&self.start_tangent) >= 0.0
+            (p - self.start).dot(&self.start_tangent) >= 0.0
                 && (p - self.end).dot(&self.end_tangent()) <= 0.0
                 && k.abs() * (p - mid).dot(&u) + 1.0 > 0.0
+        }
+    }
+
+    /// The signed distance from `p` to the arc's circle, written without the centre (exact
+    /// as the curvature goes to 0): `pow(p) / (|p - c| + r)` with `a = p - start` and `n`
+    /// the unit normal at `start`, and the vector `n - k a` along the line from `p` to the
+    /// centre (length `|k| |p - c|`); `p` plus the offset times that line's unit vector is
+    /// the foot on the circle, for either sign of `k`.
+    fn circle_offset(&self, p: Point2<f64>) -> (f64, Vector2<f64>) {
+        let k = self.curvature;
+        let n = perp(self.start_tangent);
+        let a = p - self.start;
+        let to_centre = n - a * k;
+        (
+            (k * a.norm_squared() - 2.0 * a.dot(&n)) / (to_centre.norm() + 1.0),
+            to_centre,
+        )
+    }
+}
+
+impl NearestPoint for Arc {
+    fn nearest(&self, p: Point2<f64>) -> (f64, Point2<f64>) {
+        let (da, db) = ((p - self.start).norm(), (p - self.end).norm());
+        let nearer_end = if da <= db {
+            (da, self.start)
+        } else {
+            (db, self.end)
         };
-        if !in_range {
+        if self.is_segment() {
+            let d = self.end - self.start;
+            let u = ((p - self.start).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
+            let foot = self.start + d * u;
+            return ((p - foot).norm(), foot);
+        }
+        if !self.foot_on_arc(p) {
+            return nearer_end;
+        }
+        // The foot is `p` moved by the signed offset along the unit vector towards the centre.
+        let (offset, to_centre) = self.circle_offset(p);
+        let len = to_centre.norm();
+        if offset.abs() > nearer_end.0 || len == 0.0 {
+            return nearer_end;
+        }
+        (offset.abs(), p + to_centre * (offset / len))
+    }
+
+    /// Euclidean distance from `p` to the arc (the closed point set), without the foot.
+    fn distance_to(&self, p: Point2<f64>) -> f64 {
+        let to_ends = (p - self.start).norm().min((p - self.end).norm());
+        if self.is_segment() {
+            let d = self.end - self.start;
+            let len_sq = d.norm_squared();
+            let u = ((p - self.start).dot(&d) / len_sq).clamp(0.0, 1.0);
+            return (p - (self.start + d * u)).norm();
+        }
+        if !self.foot_on_arc(p) {
             return to_ends;
         }
-        // Distance to the circle, |pow(p)| / (|p - c| + r), written without the centre.
-        let num = (k * a.norm_squared() - 2.0 * a.dot(&n)).abs();
-        let den = (a * k - n).norm() + 1.0;
-        (num / den).min(to_ends)
+        self.circle_offset(p).0.abs().min(to_ends)
     }
 }
 
@@ -279,9 +323,9 @@ mod tests {
         assert!((a.end_tangent() - Vector2::new(-1.0, 0.0)).norm() < 1e-15);
         assert!((a.sagitta() - (1.0 - (PI / 4.0).cos())).abs() < 1e-15);
         // distances: outside point radially, point behind start, centre
-        assert!((a.distance_to_point(Point2::new(2.0, 2.0)) - (8f64.sqrt() - 1.0)).abs() < 1e-14);
-        assert!((a.distance_to_point(Point2::new(1.0, -1.0)) - 1.0).abs() < 1e-15);
-        assert!((a.distance_to_point(Point2::origin()) - 1.0).abs() < 1e-15);
+        assert!((a.distance_to(Point2::new(2.0, 2.0)) - (8f64.sqrt() - 1.0)).abs() < 1e-14);
+        assert!((a.distance_to(Point2::new(1.0, -1.0)) - 1.0).abs() < 1e-15);
+        assert!((a.distance_to(Point2::origin()) - 1.0).abs() < 1e-15);
         let r = a.reversed();
         assert!((r.center().unwrap() - c).norm() < 1e-15);
         assert!((r.end_tangent() + a.start_tangent).norm() < 1e-15);
@@ -298,8 +342,8 @@ mod tests {
         assert!(a.is_segment() && a.center().is_none() && a.radius().is_infinite());
         assert_eq!(a.length, 2.0);
         assert_eq!(a.point_at(1.0), Point2::new(1.0, 0.0));
-        assert!((a.distance_to_point(Point2::new(1.0, 0.5)) - 0.5).abs() < 1e-15);
-        assert!((a.distance_to_point(Point2::new(3.0, 0.0)) - 1.0).abs() < 1e-15);
+        assert!((a.distance_to(Point2::new(1.0, 0.5)) - 0.5).abs() < 1e-15);
+        assert!((a.distance_to(Point2::new(3.0, 0.0)) - 1.0).abs() < 1e-15);
     }
 
     #[test]
@@ -328,9 +372,18 @@ mod tests {
                 let sampled = (0..=20000)
                     .map(|i| (a.point_at(a.length * i as f64 / 20000.0) - p).norm())
                     .fold(f64::INFINITY, f64::min);
-                let d = a.distance_to_point(p);
+                let d = a.distance_to(p);
                 assert!(d <= sampled + 1e-14, "theta {theta}: {d} > {sampled}");
                 assert!(sampled - d < 1e-7, "theta {theta}: {d} vs {sampled}");
+                // The foot: at the same distance, and on the arc (its own distance to the
+                // arc is rounding, though the centre is 1e7 away at theta 1e-7).
+                let (dn, foot) = a.nearest(p);
+                assert_eq!(dn, d, "theta {theta}");
+                assert!(
+                    ((foot - p).norm() - d).abs() < 1e-14,
+                    "theta {theta}: {foot:?}"
+                );
+                assert!(a.distance_to(foot) < 1e-14, "theta {theta}: {foot:?}");
             }
             assert!((a.point_at(a.length) - a.end).norm() < 1e-14);
         }

@@ -225,6 +225,7 @@ fn binomial_row(n: usize) -> [f64; 2 * super::span::MAX_SPAN_DEGREE + 1] {
 mod tests {
     use super::*;
     use crate::biarc::test_curves::circle_arc_quadratic as quadratic_arc;
+    use crate::nearest::NearestPoint;
 
     fn point(h: &[[f64; 3]], t: f64) -> Point2<f64> {
         let b = [(1.0 - t) * (1.0 - t), 2.0 * t * (1.0 - t), t * t];
@@ -247,7 +248,7 @@ mod tests {
     /// Largest distance from 20,001 curve samples to the arc (its own point distance).
     fn sampled(h: &[[f64; 3]], arc: &Arc) -> f64 {
         (0..=20_000)
-            .map(|i| arc.distance_to_point(point(h, i as f64 / 20_000.0)))
+            .map(|i| arc.distance_to(point(h, i as f64 / 20_000.0)))
             .fold(0.0, f64::max)
     }
 

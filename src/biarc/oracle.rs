@@ -6,6 +6,7 @@ use nalgebra::Point2;
 
 use super::arc::Arc;
 use super::fit::PlanarCurve;
+use crate::nearest::NearestPoint;
 
 /// Golden-section iterations used to refine the arc-to-curve distance between two neighbouring
 /// curve samples: 60 iterations shrink the bracket by 0.618^60 ~ 3e-13.
@@ -14,7 +15,7 @@ const GOLDEN_ITERS: usize = 60;
 /// Distance from `p` to the nearest of `arcs`.
 pub fn distance_to_arcs(p: Point2<f64>, arcs: &[Arc]) -> f64 {
     arcs.iter()
-        .map(|a| a.distance_to_point(p))
+        .map(|a| a.distance_to(p))
         .fold(f64::INFINITY, f64::min)
 }
 

@@ -9,13 +9,16 @@
 //! profile too (the original curve stays within eps of the chain, so it cannot pass
 //! between the point and the chain).
 
+use super::descent::{self, DiskVisitor, Visit};
 use super::patch::ProfileArc;
 use super::tree::QueryTree;
+use crate::nearest::NearestPoint;
 use crate::num::cross2;
 use crate::profile::ProfileKind;
 use crate::tolerances::AXIS_NUDGE;
 use nalgebra::{Point2, Point3};
 use std::f64::consts::TAU;
+use std::ops::Range;
 
 /// Sweep (radians) above which an arc's bulge side is read from its midpoint (sagitta at
 /// least `r (1 - cos 0.5) ~ 0.12 r`, far above rounding); below it, from its centre.
@@ -118,17 +121,21 @@ fn classify(tree: &QueryTree, m: Point2<f64>, cap: f64) -> (Inside, Point2<f64>)
     if tree.node_ends.is_empty() {
         for p in &tree.chain {
             total += swept_angle(p, w);
-            let (d, q) = p.closest_point(m);
+            let (d, q) = p.nearest(m);
             if d < margin {
                 (margin, nearest) = (d, q);
             }
         }
     } else {
-        let mut near = Nearest {
-            margin: &mut margin,
-            point: &mut nearest,
+        let mut winding = Winding {
+            w,
+            m,
+            total,
+            margin,
+            nearest,
         };
-        descend(tree, tree.root, w, m, &mut total, &mut near);
+        descent::descend(tree, &mut winding);
+        (total, margin, nearest) = (winding.total, winding.margin, winding.nearest);
     }
     if tree.kind == ProfileKind::OpenOnAxis {
         if let (Some(first), Some(last)) = (tree.chain.first(), tree.chain.last()) {
@@ -146,46 +153,47 @@ fn classify(tree: &QueryTree, m: Point2<f64>, cap: f64) -> (Inside, Point2<f64>)
     (inside, nearest)
 }
 
-/// The smallest distance to the chain seen by a descent, and where.
-struct Nearest<'a> {
-    margin: &'a mut f64,
-    point: &'a mut Point2<f64>,
-}
-
-/// Winding and margin contributions of the pieces under `id` (see [`point_in_profile`]).
-fn descend(
-    tree: &QueryTree,
-    id: u32,
+/// The winding angle of the chain about `w` and the smallest distance from `m` to it, with
+/// where, summed and kept over a descent (see [`point_in_profile`]).
+struct Winding {
     w: Point2<f64>,
     m: Point2<f64>,
-    total: &mut f64,
-    near: &mut Nearest<'_>,
-) {
-    let n = &tree.nodes[id as usize];
-    let Some([s, e]) = tree.node_ends[id as usize] else {
-        return;
-    };
-    let (c, r) = (n.bound.center, n.bound.radius);
-    if (w - c).norm() > r && (m - c).norm() - r >= *near.margin {
-        let (a, b) = (s - w, e - w);
-        *total += cross2(a, b).atan2(a.dot(&b));
-        return;
+    total: f64,
+    margin: f64,
+    nearest: Point2<f64>,
+}
+
+impl DiskVisitor for Winding {
+    /// A subtree whose disk holds neither `w` nor a point nearer to `m` than the margin adds
+    /// its chord's angle (the pieces under it run from the node's first end to its last).
+    fn visit_node(&mut self, tree: &QueryTree, id: u32) -> Visit {
+        let Some([s, e]) = tree.node_ends[id as usize] else {
+            return Visit::Skip;
+        };
+        let n = &tree.nodes[id as usize];
+        let (c, r) = (n.bound.center, n.bound.radius);
+        if (self.w - c).norm() > r && (self.m - c).norm() - r >= self.margin {
+            let (a, b) = (s - self.w, e - self.w);
+            self.total += cross2(a, b).atan2(a.dot(&b));
+            return Visit::Skip;
+        }
+        Visit::Open
     }
-    if n.is_leaf() {
-        for p in &tree.chain[n.patch_start as usize..n.patch_end as usize] {
-            *total += swept_angle(p, w);
-            let (d, q) = p.closest_point(m);
-            if d < *near.margin {
-                *near.margin = d;
-                *near.point = q;
+
+    fn visit_leaf(&mut self, tree: &QueryTree, pieces: Range<usize>) {
+        for p in &tree.chain[pieces] {
+            self.total += swept_angle(p, self.w);
+            let (d, q) = p.nearest(self.m);
+            if d < self.margin {
+                (self.margin, self.nearest) = (d, q);
             }
         }
-        return;
     }
-    // Nearer child first: its margin prunes more of the other.
-    let [first, second] = tree.children_nearer_first(id, m);
-    descend(tree, first, w, m, total, near);
-    descend(tree, second, w, m, total, near);
+
+    /// Nearer child first: its margin prunes more of the other.
+    fn order(&self, tree: &QueryTree, id: u32) -> [u32; 2] {
+        tree.children_nearer_first(id, self.m)
+    }
 }
 
 /// Classifies a point given in the solid's local frame.

@@ -19,6 +19,7 @@
 pub mod containment;
 pub mod convex;
 pub mod deep_interior;
+pub mod descent;
 pub mod hull;
 pub mod inscribed;
 pub mod offset_solid;

@@ -9,6 +9,7 @@
 //! radius `c_rho` (signed) at height `c_z`; every surface normal line meets it at a right angle.
 
 use crate::biarc::Disk;
+use crate::nearest::NearestPoint;
 use crate::tolerances::{ANGLE_SLACK, AXIS_SNAP, FLAT_SNAP, SEGMENT_SLACK};
 use nalgebra::{Point2, Point3, Vector2, Vector3};
 use std::f64::consts::TAU;
@@ -184,41 +185,6 @@ impl ProfileArc {
             Some(0.0)
         } else {
             None
-        }
-    }
-
-    /// Closest point of the piece to `x` (planar), with its distance.
-    pub fn closest_point(&self, x: Point2<f64>) -> (f64, Point2<f64>) {
-        match *self {
-            ProfileArc::Arc { center, radius, .. } => {
-                let d = x - center;
-                let n = d.norm();
-                if n > 0.0 {
-                    let phi = d.y.atan2(d.x);
-                    if self.arc_param(phi).is_some() {
-                        let p = center + d * (radius / n);
-                        return ((n - radius).abs(), p);
-                    }
-                }
-                let (a, b) = (self.start(), self.end());
-                let (da, db) = ((x - a).norm(), (x - b).norm());
-                if da <= db {
-                    (da, a)
-                } else {
-                    (db, b)
-                }
-            }
-            ProfileArc::Segment { start, end } => {
-                let e = end - start;
-                let l2 = e.norm_squared();
-                let t = if l2 > 0.0 {
-                    ((x - start).dot(&e) / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let p = start + t * e;
-                ((x - p).norm(), p)
-            }
         }
     }
 
@@ -406,7 +372,7 @@ impl Patch {
     /// planar distance from `(rho, z)` of the point to the profile piece.
     pub fn point_distance(&self, x: &Point3<f64>) -> (f64, Point3<f64>) {
         let rho = crate::num::norm2(x.x, x.y);
-        let (d, c) = self.arc.closest_point(Point2::new(rho, x.z));
+        let (d, c) = self.arc.nearest(Point2::new(rho, x.z));
         let e = if rho > 0.0 {
             Vector3::new(x.x / rho, x.y / rho, 0.0)
         } else {
@@ -539,6 +505,43 @@ impl Patch {
             ProfileArc::Segment { start, end } => {
                 let d = (end - start).normalize();
                 Vector2::new(-d.y, d.x)
+            }
+        }
+    }
+}
+
+impl NearestPoint for ProfileArc {
+    /// Closest point of the piece to `x` (planar), with its distance.
+    fn nearest(&self, x: Point2<f64>) -> (f64, Point2<f64>) {
+        match *self {
+            ProfileArc::Arc { center, radius, .. } => {
+                let d = x - center;
+                let n = d.norm();
+                if n > 0.0 {
+                    let phi = d.y.atan2(d.x);
+                    if self.arc_param(phi).is_some() {
+                        let p = center + d * (radius / n);
+                        return ((n - radius).abs(), p);
+                    }
+                }
+                let (a, b) = (self.start(), self.end());
+                let (da, db) = ((x - a).norm(), (x - b).norm());
+                if da <= db {
+                    (da, a)
+                } else {
+                    (db, b)
+                }
+            }
+            ProfileArc::Segment { start, end } => {
+                let e = end - start;
+                let l2 = e.norm_squared();
+                let t = if l2 > 0.0 {
+                    ((x - start).dot(&e) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let p = start + t * e;
+                ((x - p).norm(), p)
             }
         }
     }

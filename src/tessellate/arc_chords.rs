@@ -181,6 +181,7 @@ fn scaled_point(arc: &Arc, s: f64, offset: f64) -> Point2<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::nearest::NearestPoint;
     use std::f64::consts::PI;
 
     /// Dense two-sided check of the lemma: every segment point is within its deviation of the
@@ -204,7 +205,7 @@ mod tests {
             }
             for i in 0..=50 {
                 let x = w[0] + (w[1] - w[0]) * (i as f64 / 50.0);
-                let dist = arc.distance_to_point(x);
+                let dist = arc.distance_to(x);
                 assert!(dist <= d + slack, "segment point {dist} > {d}");
             }
         }

@@ -2,15 +2,16 @@
 //! ([`crate::query::convex`]): its witnesses and its ball path ask it once or twice per
 //! query, so each piece's angular range is kept as the unit directions of its ends
 //! ([`MeridianPiece`], built once per tree) and tested with cross products, where
-//! [`ProfileArc::closest_point`] computes an `atan2` and the ends' `sin` and `cos` per arc.
+//! [`ProfileArc`'s nearest point](crate::nearest::NearestPoint) computes an `atan2` and the ends' `sin` and `cos` per arc.
 //!
 //! The answer is a point of the piece: a point of the arc's circle whose direction from
 //! the centre passes the range test (rounding of the test moves the boundary by a few ulps
 //! of the direction, so the foot is on the arc up to that), or an end point. Which of two
-//! nearly equidistant pieces wins may differ from the scan of [`ProfileArc::closest_point`]
+//! nearly equidistant pieces wins may differ from the scan of [`ProfileArc`'s nearest point](crate::nearest::NearestPoint)
 //! by rounding; either is a point of the approximating surface.
 
-use crate::bvh::{ProfileArc, QueryTree};
+use crate::bvh::{descent, ProfileArc, QueryTree};
+use crate::nearest::NearestPoint;
 use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
@@ -65,10 +66,12 @@ impl MeridianPiece {
             }
         }
     }
+}
 
+impl NearestPoint for MeridianPiece {
     /// Distance from `m` to the piece and the piece's point at that distance.
     #[inline]
-    pub fn closest_point(&self, m: Point2<f64>) -> (f64, Point2<f64>) {
+    fn nearest(&self, m: Point2<f64>) -> (f64, Point2<f64>) {
         match *self {
             MeridianPiece::Segment {
                 start,
@@ -119,56 +122,14 @@ pub fn meridian_pieces(tree: &QueryTree) -> Vec<MeridianPiece> {
         .collect()
 }
 
-/// The point of the tree's chain nearest to the meridian point `m` and its distance: a
-/// descent of the tree's disks (each holds its pieces), nearer child first, pruned by the
-/// best distance so far; `pieces` are [`meridian_pieces`] of the tree. `None` for an empty
-/// tree.
+/// The point of the tree's chain nearest to the meridian point `m` and its distance, from
+/// the tree's [`meridian_pieces`] ([`crate::bvh::descent::nearest_chain_point`]).
 pub fn nearest_chain_point(
     tree: &QueryTree,
     pieces: &[MeridianPiece],
     m: Point2<f64>,
 ) -> Option<(f64, Point2<f64>)> {
-    let mut best: Option<(f64, Point2<f64>)> = None;
-    if !tree.nodes.is_empty() {
-        descend(tree, pieces, tree.root, m, &mut best);
-    }
-    best
-}
-
-fn descend(
-    tree: &QueryTree,
-    pieces: &[MeridianPiece],
-    id: u32,
-    m: Point2<f64>,
-    best: &mut Option<(f64, Point2<f64>)>,
-) {
-    let n = &tree.nodes[id as usize];
-    if let Some((d, _)) = *best {
-        // `|m - c| - r > d`, compared squared (both sides non-negative): no square root.
-        let reach = d + n.bound.radius;
-        if (m - n.bound.center).norm_squared() > reach * reach {
-            return;
-        }
-    }
-    if n.is_leaf() {
-        for piece in &pieces[n.patch_start as usize..n.patch_end as usize] {
-            let (d, p) = piece.closest_point(m);
-            if best.is_none_or(|(b, _)| d < b) {
-                *best = Some((d, p));
-            }
-        }
-        return;
-    }
-    // Nearer child first (as `QueryTree::children_nearer_first`, by squared distances).
-    let [c0, c1] = n.children;
-    let dist2 = |k: u32| (m - tree.nodes[k as usize].bound.center).norm_squared();
-    let (first, second) = if dist2(c0) <= dist2(c1) {
-        (c0, c1)
-    } else {
-        (c1, c0)
-    };
-    descend(tree, pieces, first, m, best);
-    descend(tree, pieces, second, m, best);
+    descent::nearest_chain_point(tree, pieces, m)
 }
 
 #[cfg(test)]
@@ -180,7 +141,7 @@ mod tests {
     use std::f64::consts::PI;
     use std::sync::Arc;
 
-    /// Each piece's nearest point agrees with `ProfileArc::closest_point` (the `atan2`
+    /// Each piece's nearest point agrees with `ProfileArc`'s `nearest` (the `atan2`
     /// form), arcs of either orientation, narrow and wide, and segments.
     #[test]
     fn pieces_agree_with_the_angle_form() {
@@ -213,8 +174,8 @@ mod tests {
             let piece = MeridianPiece::of(arc);
             for _ in 0..2000 {
                 let m = Point2::new(rng.next_f64() * 3.0 - 1.0, rng.next_f64() * 3.0 - 1.0);
-                let (d, p) = piece.closest_point(m);
-                let (d0, _) = arc.closest_point(m);
+                let (d, p) = piece.nearest(m);
+                let (d0, _) = arc.nearest(m);
                 assert!((d - d0).abs() <= 1e-12, "{arc:?} {m:?}: {d} vs {d0}");
                 assert!(((m - p).norm() - d).abs() <= 1e-14, "{arc:?} {m:?}");
             }
@@ -235,7 +196,7 @@ mod tests {
                     .tree
                     .patches
                     .iter()
-                    .map(|p| p.arc.closest_point(m).0)
+                    .map(|p| p.arc.nearest(m).0)
                     .fold(f64::INFINITY, f64::min);
                 assert!((d - scan).abs() <= 1e-12 * (1.0 + scan), "{name} {m:?}");
             }

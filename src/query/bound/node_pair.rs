@@ -22,6 +22,7 @@ use crate::biarc::Disk;
 use crate::bvh::hull::NodeHull;
 use crate::bvh::patch::ProfileArc;
 use crate::circle::min_distance_value;
+use crate::nearest::NearestPoint;
 use crate::num::norm2;
 use crate::query::angles::common_normals::parallel_circle;
 use crate::tolerances::BOUND_SLACK;
@@ -114,7 +115,7 @@ pub fn shell_bound(a: &ProfileArc, b: &ProfileArc, pos_ab: &Isometry3<f64>) -> f
             return f64::NEG_INFINITY;
         }
         let c = to_other * Point3::new(0.0, 0.0, center.y);
-        let (d, _) = other.closest_point(nalgebra::Point2::new(c.x.hypot(c.y), c.z));
+        let (d, _) = other.nearest(nalgebra::Point2::new(c.x.hypot(c.y), c.z));
         let scale = 1.0 + c.coords.norm() + radius + center.y.abs();
         d - radius - center.x.abs() - BOUND_SLACK * scale
     };

@@ -16,10 +16,11 @@
 //!
 //! The nearest point of a surface of revolution to `x` lies in `x`'s meridian half-plane, at
 //! the nearest point of the planar chain to `x`'s meridian coordinates `(rho, z)`: a descent
-//! of the tree's disks (each holds its pieces), nearer child first, on the pieces a convex
-//! tree keeps for it ([`crate::bvh::convex::nearest`]: no `atan2` or `sin`/`cos`).
+//! of the tree's disks, nearer child first ([`crate::bvh::descent::nearest_chain_point`]),
+//! over the pieces a convex tree keeps for it (no `atan2` or `sin`/`cos`,
+//! [`crate::bvh::convex::nearest`]) or over any other tree's patches.
 
-use crate::bvh::convex::nearest;
+use crate::bvh::descent::nearest_chain_point as nearest_in_chain;
 use crate::bvh::QueryTree;
 use nalgebra::{Point2, Point3, Vector3};
 
@@ -49,42 +50,21 @@ pub fn nearest_surface_point(
 }
 
 /// The point of the tree's planar chain nearest to the meridian point `m`; `None` for an
-/// empty tree.
+/// empty tree. A convex tree keeps its pieces in the form without `atan2`
+/// ([`crate::bvh::convex::MeridianPiece`]); any other tree's patches answer for themselves.
 pub fn nearest_chain_point(tree: &QueryTree, m: Point2<f64>) -> Option<Point2<f64>> {
-    if let Some(c) = &tree.convex {
-        return nearest::nearest_chain_point(tree, &c.pieces, m).map(|(_, p)| p);
-    }
-    let mut best: Option<(f64, Point2<f64>)> = None;
-    if !tree.nodes.is_empty() {
-        descend(tree, tree.root, m, &mut best);
-    }
-    best.map(|(_, p)| p)
-}
-
-fn descend(tree: &QueryTree, id: u32, m: Point2<f64>, best: &mut Option<(f64, Point2<f64>)>) {
-    let n = &tree.nodes[id as usize];
-    let reach = (m - n.bound.center).norm() - n.bound.radius;
-    if best.is_some_and(|(d, _)| reach > d) {
-        return;
-    }
-    if n.is_leaf() {
-        for patch in &tree.patches[n.patch_start as usize..n.patch_end as usize] {
-            let (d, p) = patch.arc.closest_point(m);
-            if best.is_none_or(|(b, _)| d < b) {
-                *best = Some((d, p));
-            }
-        }
-        return;
-    }
-    let [first, second] = tree.children_nearer_first(id, m);
-    descend(tree, first, m, best);
-    descend(tree, second, m, best);
+    let found = match &tree.convex {
+        Some(c) => nearest_in_chain(tree, &c.pieces, m),
+        None => nearest_in_chain(tree, &tree.patches, m),
+    };
+    found.map(|(_, p)| p)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::models::model;
+    use crate::nearest::NearestPoint;
     use crate::solid::Solid;
     use crate::test_rng::SplitMix64;
     use std::sync::Arc;
@@ -107,7 +87,7 @@ mod tests {
                 let scan = t
                     .patches
                     .iter()
-                    .map(|p| p.arc.closest_point(m).0)
+                    .map(|p| p.arc.nearest(m).0)
                     .fold(f64::INFINITY, f64::min);
                 assert!(
                     ((got - m).norm() - scan).abs() <= 1e-14 * (1.0 + scan),

@@ -8,6 +8,7 @@
 //! perpendicular to the segment; two segments have no isolated interior common normal.
 
 use crate::bvh::patch::ProfileArc;
+use crate::nearest::NearestPoint;
 use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
@@ -160,11 +161,11 @@ pub fn piece_distance(a: &ProfileArc, b: &ProfileArc) -> (f64, Point2<f64>, Poin
         }
     };
     for pa in [a.start(), a.end()] {
-        let (_, pb) = b.closest_point(pa);
+        let (_, pb) = b.nearest(pa);
         consider(pa, pb);
     }
     for pb in [b.start(), b.end()] {
-        let (_, pa) = a.closest_point(pb);
+        let (_, pa) = a.nearest(pb);
         consider(pa, pb);
     }
     match (*a, *b) {

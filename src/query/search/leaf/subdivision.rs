@@ -154,6 +154,7 @@ pub fn patch_lower_bound(
 mod tests {
     use super::super::sectors::sector_lower_bound;
     use super::*;
+    use crate::nearest::NearestPoint;
     use crate::test_rng::Lcg;
     use nalgebra::{Point2, Translation3, UnitQuaternion, Vector3};
 
@@ -219,7 +220,7 @@ mod tests {
                 for k in 0..n {
                     let th = k as f64 * std::f64::consts::TAU / n as f64;
                     let x = pos_ba * nalgebra::Point3::new(m.x * th.cos(), m.x * th.sin(), m.y);
-                    let d = b.closest_point(Point2::new(x.x.hypot(x.y), x.z)).0;
+                    let d = b.nearest(Point2::new(x.x.hypot(x.y), x.z)).0;
                     sampled = sampled.min(d);
                 }
             }
