@@ -255,6 +255,7 @@ mod tests {
     use crate::biarc::fit::{fit_biarc, g1_tolerance, CurveSample, PlanarCurve};
     use crate::biarc::oracle::sampled_hausdorff;
     use crate::biarc::span::SpanCurve;
+    use crate::num::cross2;
     use proptest::prelude::*;
 
     /// Samples per spiral piece for the sign / monotonicity checks.
@@ -268,7 +269,7 @@ mod tests {
         let e = 1e-6;
         let (_, d) = c.point_and_derivative(u);
         let dd = (c.point_and_derivative(u + e).1 - c.point_and_derivative(u - e).1) / (2.0 * e);
-        (d.x * dd.y - d.y * dd.x) / d.norm().powi(3)
+        cross2(d, dd) / d.norm().powi(3)
     }
 
     fn h_scale(h: &[[f64; 3]]) -> f64 {
@@ -316,7 +317,7 @@ mod tests {
                 "kappa not monotone on [{u0}, {u1}]"
             );
             let (t0, t1) = (d[0], d[SAMPLES]);
-            let turn = (t0.x * t1.y - t0.y * t1.x).atan2(t0.dot(&t1)).abs();
+            let turn = cross2(t0, t1).atan2(t0.dot(&t1)).abs();
             assert!(turn <= std::f64::consts::FRAC_PI_2 + 1e-6, "turning {turn}");
             let (s0, s1) = (CurveSample::at(&c, u0), CurveSample::at(&c, u1));
             if (s1.point - s0.point).norm() < 1e-9 {

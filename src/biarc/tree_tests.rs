@@ -3,6 +3,7 @@
 use super::fit::PlanarCurve;
 use super::oracle::sampled_hausdorff;
 use super::tree::{BiarcTree, TreeError};
+use crate::num::cross2;
 use crate::nurbs::NurbsCurve;
 use crate::poly::bernstein::Bernstein;
 use crate::profile::Profile;
@@ -79,7 +80,7 @@ pub(crate) fn check_tree_with(profile: &Profile, tree: &BiarcTree, samples: usiz
         }
         let defect = {
             let (t0, t1) = (node.arcs()[0].end_tangent(), node.arcs()[1].start_tangent);
-            (t0.x * t1.y - t0.y * t1.x).atan2(t0.dot(&t1)).abs()
+            cross2(t0, t1).atan2(t0.dot(&t1)).abs()
         };
         let shortest = node.arcs()[0].length.min(node.arcs()[1].length);
         let g1 = match s.bound() {

@@ -34,6 +34,7 @@
 //! then treated as not convex.
 
 use super::exact::{cross_sign, dot_sign};
+use crate::num::cross2;
 use crate::nurbs::NurbsCurve;
 use crate::profile::{Profile, ProfileKind};
 use nalgebra::{Point2, Vector2};
@@ -90,7 +91,7 @@ impl Run {
 /// to rounding, that is not a cusp).
 fn joint_angle(a: Vector2<f64>, b: Vector2<f64>) -> Option<f64> {
     let (a, b) = (a.normalize(), b.normalize());
-    let angle = (a.x * b.y - a.y * b.x).atan2(a.dot(&b));
+    let angle = cross2(a, b).atan2(a.dot(&b));
     (-KINK_TOLERANCE..PI - 1e-9)
         .contains(&angle)
         .then_some(angle)
@@ -250,7 +251,7 @@ fn polygon_run(points: &[Point2<f64>]) -> Option<Option<Run>> {
                 return None;
             }
             let (u, v) = (prev.1 - prev.0, leg.1 - leg.0);
-            turning += (u.x * v.y - u.y * v.x).atan2(u.dot(&v)).max(0.0);
+            turning += cross2(u, v).atan2(u.dot(&v)).max(0.0);
         }
         length += (leg.1 - leg.0).norm();
     }

@@ -17,6 +17,7 @@ pub mod nearest;
 pub mod support;
 
 use super::QueryTree;
+use crate::num::cross2;
 use crate::profile::Profile;
 pub use convexity::{certify_convex, ConvexProfile};
 pub use nearest::MeridianPiece;
@@ -74,7 +75,7 @@ fn creases(chain: &[crate::bvh::ProfileArc]) -> Vec<nalgebra::Point2<f64>> {
         }
         for w in chain.windows(2) {
             let (t0, t1) = (w[0].tangent_at(1.0), w[1].tangent_at(0.0));
-            let sine = (t0.x * t1.y - t0.y * t1.x).abs();
+            let sine = cross2(t0, t1).abs();
             if sine > CREASE_TURN || t0.dot(&t1) < 0.0 {
                 out.push(w[0].end());
             }

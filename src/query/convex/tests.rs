@@ -4,6 +4,7 @@
 
 use crate::bvh::convex::certify_convex;
 use crate::models::{model, model_names, primitives::bezier};
+use crate::num::cross2;
 use crate::nurbs::NurbsCurve;
 use crate::profile::Profile;
 use crate::query::front::distance::{distance, query_slack, QueryOptions, Tolerance};
@@ -285,7 +286,7 @@ fn sampled_convexity(p: &Profile) -> Option<bool> {
         if !(u.x.is_finite() && v.x.is_finite()) {
             continue;
         }
-        let turn = (u.x * v.y - u.y * v.x).atan2(u.dot(&v));
+        let turn = cross2(u, v).atan2(u.dot(&v));
         min_turn = min_turn.min(turn);
         total += turn;
     }
