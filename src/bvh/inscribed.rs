@@ -130,6 +130,7 @@ mod tests {
                     let m = match o.core {
                         Core::Point { z } => Point2::new(dr.abs(), z + dz),
                         Core::Circle { rho, z } => Point2::new(rho + dr, z + dz),
+                        Core::Segment { .. } => unreachable!("inscribed solids are balls or tori"),
                     };
                     let c = point_in_profile(&s.tree, m);
                     assert!(c.inside, "{name}: {m:?} of {o:?} outside");

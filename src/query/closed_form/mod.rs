@@ -21,35 +21,64 @@
 //! [`crate::circle`] and the parallel circles of [`crate::query::angles`]; it answers with
 //! the query's [`Certified`] type. Never the other paths or the front door.
 
+mod segments;
+
 use crate::bvh::offset_solid::{Core, OffsetSolid};
 use crate::circle::{min_distance, point_circle_distance};
 use crate::query::angles::common_normals::parallel_circle;
 use crate::query::certified::{Certified, TraversalStats};
 use nalgebra::{Isometry3, Point3, Vector3};
+use segments::{segment_distance, Segment3};
 
-/// Closest points of two cores (A's frame; B placed by `pos_ab`) and their distance.
-fn core_distance(a: &Core, b: &Core, pos_ab: &Isometry3<f64>) -> (f64, Point3<f64>, Point3<f64>) {
+/// Closest points of two cores (A's frame; B placed by `pos_ab`): a realised distance, a
+/// lower bound of the cores' distance up to the caller's slack (the circle solver's is its
+/// value, [`crate::tolerances::POSE_SLACK_REL`]; segments have their separating slab,
+/// [`segments`]) and the points. `None` for a segment against a circle (no closed form here;
+/// the traversal answers capsules against solid tori).
+fn core_distance(
+    a: &Core,
+    b: &Core,
+    pos_ab: &Isometry3<f64>,
+) -> Option<(f64, f64, Point3<f64>, Point3<f64>)> {
     let on_axis = |z: f64, pos: &Isometry3<f64>| pos * Point3::new(0.0, 0.0, z);
+    let axis_segment = |a: &Core, pos: &Isometry3<f64>| match *a {
+        Core::Point { z } => Some(Segment3 {
+            start: on_axis(z, pos),
+            end: on_axis(z, pos),
+        }),
+        Core::Segment { z0, z1 } => Some(Segment3 {
+            start: on_axis(z0, pos),
+            end: on_axis(z1, pos),
+        }),
+        Core::Circle { .. } => None,
+    };
+    let realised = |(d, pa, pb): (f64, Point3<f64>, Point3<f64>)| Some((d, d, pa, pb));
     match (*a, *b) {
         (Core::Point { z: za }, Core::Point { z: zb }) => {
             let (pa, pb) = (on_axis(za, &Isometry3::identity()), on_axis(zb, pos_ab));
-            ((pb - pa).norm(), pa, pb)
+            realised(((pb - pa).norm(), pa, pb))
         }
         (Core::Circle { rho, z }, Core::Point { z: zb }) => {
             let pb = on_axis(zb, pos_ab);
             let m = point_circle_distance(&pb, &parallel_circle(rho, z, &Isometry3::identity()));
-            (m.distance, m.closest, pb)
+            realised((m.distance, m.closest, pb))
         }
         (Core::Point { z: za }, Core::Circle { rho, z }) => {
             let pa = on_axis(za, &Isometry3::identity());
             let m = point_circle_distance(&pa, &parallel_circle(rho, z, pos_ab));
-            (m.distance, pa, m.closest)
+            realised((m.distance, pa, m.closest))
         }
         (Core::Circle { rho: ra, z: za }, Core::Circle { rho: rb, z: zb }) => {
             let ca = parallel_circle(ra, za, &Isometry3::identity());
             let cb = parallel_circle(rb, zb, pos_ab);
             let m = min_distance(&ca, &cb);
-            (m.distance, m.point_a, m.point_b)
+            realised((m.distance, m.point_a, m.point_b))
+        }
+        (Core::Segment { .. }, _) | (_, Core::Segment { .. }) => {
+            let sa = axis_segment(a, &Isometry3::identity())?;
+            let sb = axis_segment(b, pos_ab)?;
+            let d = segment_distance(&sa, &sb);
+            Some((d.value, d.lower, d.point_a, d.point_b))
         }
     }
 }
@@ -60,14 +89,14 @@ fn core_distance(a: &Core, b: &Core, pos_ab: &Isometry3<f64>) -> (f64, Point3<f6
 /// solids (the offsets overlap by more than `slack` plus both errors); `lower = 0` in the
 /// band around touching where neither overlap nor separation is certain. The value is the
 /// distance between the offset surfaces (`core distance - radii`, 0 when they meet), and
-/// the witnesses their closest points.
+/// the witnesses their closest points. `None` for a capsule against a solid torus.
 pub fn offset_distance(
     a: &OffsetSolid,
     b: &OffsetSolid,
     pos_ab: &Isometry3<f64>,
     slack: f64,
-) -> Certified {
-    let (d_core, ca, cb) = core_distance(&a.core, &b.core, pos_ab);
+) -> Option<Certified> {
+    let (d_core, d_core_lower, ca, cb) = core_distance(&a.core, &b.core, pos_ab)?;
     let dir = if d_core > 0.0 {
         (cb - ca) / d_core
     } else {
@@ -102,10 +131,11 @@ pub fn offset_distance(
         ..TraversalStats::default()
     };
     if let Some(x) = inside_both {
-        return Certified::overlap_at(x, stats);
+        return Some(Certified::overlap_at(x, stats));
     }
-    let (lower, upper) = ((value - h).max(0.0), (value + h).max(0.0));
-    Certified {
+    let value_lower = d_core_lower - a.radius - b.radius;
+    let (lower, upper) = ((value_lower - h).max(0.0), (value + h).max(0.0));
+    Some(Certified {
         value: value.max(0.0).clamp(lower, upper),
         lower,
         upper,
@@ -113,7 +143,7 @@ pub fn offset_distance(
         point_b,
         overlap: false,
         stats,
-    }
+    })
 }
 
 /// A point on both spheres (centres `ca`, `cb`, radii `ra`, `rb`), on their circle of
@@ -167,7 +197,7 @@ mod tests {
             let centre = dir * (7.0 - depth);
             let shift = centre - rot * Vector3::new(0.0, 0.0, 1.0);
             let pos = Isometry3::from_parts(Translation3::from(shift), rot);
-            let r = offset_distance(&a, &b, &pos, 1e-9);
+            let r = offset_distance(&a, &b, &pos, 1e-9).unwrap();
             assert!(!r.overlap && r.value == 0.0, "{depth}: {r:?}");
             assert_eq!(r.point_a, r.point_b);
             let on_a = (r.point_a.coords.norm() - 3.5).abs();
@@ -248,6 +278,7 @@ mod tests {
             let c = match s.core {
                 Core::Point { z } => Point3::new(0.0, 0.0, z),
                 Core::Circle { rho, z } => Point3::new(rho * u.cos(), rho * u.sin(), z),
+                Core::Segment { .. } => unreachable!("balls and tori here"),
             };
             c + d * s.radius
         };
@@ -262,7 +293,7 @@ mod tests {
                         Translation3::new(2.5 * (rnd() - 0.5), 2.5 * (rnd() - 0.5), 1.5 + rnd());
                     let pos = Isometry3::from_parts(t, rot);
                     let (a, b) = (&solids[ia], &solids[ib]);
-                    let r = offset_distance(a, b, &pos, 0.0);
+                    let r = offset_distance(a, b, &pos, 0.0).unwrap();
                     assert!(((r.point_a - r.point_b).norm() - r.value).abs() < 1e-12);
                     // Sampled minimum over a grid of both surfaces (coarse), refined near the
                     // best cell: an upper bound of the true distance.
@@ -322,7 +353,7 @@ mod tests {
             sphere.tree.offset.unwrap().core,
             Core::Point { .. }
         ));
-        for n in ["pawn", "capsule", "cylinder", "cone", "cup"] {
+        for n in ["pawn", "cylinder", "cone", "cup"] {
             assert!(solid(n).tree.offset.is_none(), "{n}");
         }
         let far = Isometry3::translation(5.0, 0.5, 0.3);
@@ -348,7 +379,7 @@ mod tests {
         };
         // Ball centred on the torus core circle: deep overlap.
         let pos = Isometry3::translation(1.0, 0.0, 0.0);
-        let r = offset_distance(&a, &b, &pos, 1e-12);
+        let r = offset_distance(&a, &b, &pos, 1e-12).unwrap();
         assert!(r.overlap);
         let x = r.point_a;
         let to_core_a = (x.coords.xy().norm() - 1.0).hypot(x.z);
@@ -358,8 +389,179 @@ mod tests {
         // Ball in the hole, touching: no overlap certificate, interval around 0.
         let pos = Isometry3::translation(0.0, 0.0, 0.0);
         let b2 = OffsetSolid { radius: 0.75, ..b };
-        let r = offset_distance(&a, &b2, &pos, 1e-12);
+        let r = offset_distance(&a, &b2, &pos, 1e-12).unwrap();
         assert!(!r.overlap);
         assert!(r.lower == 0.0 && r.upper >= 2e-3 && r.upper < 2.1e-3);
+    }
+
+    /// The built-in capsule (radius 0.4, caps centred at z 0.4 and 1.2) is detected at every
+    /// eps, and pairs of capsules and balls take the closed form; a capsule against a solid
+    /// torus does not.
+    #[test]
+    fn built_in_capsule_takes_the_closed_form() {
+        use crate::models::model;
+        use crate::query::{distance, QueryOptions};
+        use crate::solid::Solid;
+        use std::sync::Arc;
+        let solid =
+            |n: &str, eps: f64| Solid::from_profile(Arc::new(model(n).unwrap()), eps).unwrap();
+        for eps in [1e-2, 1e-4, 1e-6] {
+            let o = solid("capsule", eps).tree.offset.expect("a capsule");
+            let Core::Segment { z0, z1 } = o.core else {
+                panic!("{o:?}");
+            };
+            assert!(
+                (z0 - 0.4).abs() < 1e-12 && (z1 - 1.2).abs() < 1e-12,
+                "{o:?}"
+            );
+            // The tree's own bound (below eps: the circles are fitted exactly) plus rounding.
+            assert!((o.radius - 0.4).abs() < 1e-12 && o.error <= eps + 1e-12, "{o:?}");
+        }
+        let (capsule, sphere, ring) = (
+            solid("capsule", 1e-5),
+            solid("sphere", 1e-5),
+            solid("ring", 1e-5),
+        );
+        let pose = Isometry3::new(Vector3::new(0.3, 0.9, 0.5), Vector3::new(1.1, 0.2, 0.4));
+        for other in [&capsule, &sphere] {
+            let d = distance(&capsule, &other.with_pose(pose), &QueryOptions::default());
+            assert_eq!((d.stats.closed_forms, d.stats.node_pairs), (1, 0), "{d:?}");
+            let search = QueryOptions {
+                closed_form: false,
+                convex_path: false,
+                ..QueryOptions::default()
+            };
+            let s = distance(&capsule, &other.with_pose(pose), &search);
+            // Both intervals hold the true distance.
+            assert!(d.lower <= s.upper && s.lower <= d.upper, "{d:?} {s:?}");
+        }
+        let far = Isometry3::translation(5.0, 0.5, 0.3);
+        let d = distance(&capsule, &ring.with_pose(far), &QueryOptions::default());
+        assert_eq!(d.stats.closed_forms, 0);
+        assert!(d.stats.node_pairs > 0 && d.lower > 0.0);
+    }
+
+    /// Chains that are not capsules: unequal radii, caps that turn the wrong way (a chain
+    /// from the pole of the lower cap's centre that faces the side, denting the capsule), a
+    /// side off the caps' radius, a closed profile.
+    #[test]
+    fn detects_capsules_only() {
+        let cap = |c: [f64; 2], r: f64, phi0: f64, sweep: f64| arc(c, r, phi0, sweep);
+        let side = |x: f64, z0: f64, z1: f64| ProfileArc::Segment {
+            start: Point2::new(x, z0),
+            end: Point2::new(x, z1),
+        };
+        let capsule = vec![
+            cap([0.0, 0.4], 0.4, -PI / 2.0, PI / 4.0),
+            cap([0.0, 0.4], 0.4, -PI / 4.0, PI / 4.0),
+            side(0.4, 0.4, 0.8),
+            side(0.4, 0.8, 1.2),
+            cap([0.0, 1.2], 0.4, 0.0, PI / 2.0),
+        ];
+        let o = detect(&capsule, ProfileKind::OpenOnAxis, 1e-6).unwrap();
+        assert_eq!(o.core, Core::Segment { z0: 0.4, z1: 1.2 });
+        assert!(o.error >= 1e-6 && o.error < 1e-6 + 1e-14, "{o:?}");
+        // The same capsule run from the top.
+        let down: Vec<ProfileArc> = capsule.iter().rev().map(|p| p.reversed()).collect();
+        let o = detect(&down, ProfileKind::OpenOnAxis, 0.0).unwrap();
+        assert_eq!(o.core, Core::Segment { z0: 0.4, z1: 1.2 });
+        let mut wide = capsule.clone();
+        wide[4] = cap([0.0, 1.2], 0.41, 0.0, PI / 2.0);
+        assert!(detect(&wide, ProfileKind::OpenOnAxis, 0.0).is_none());
+        let mut off_side = capsule.clone();
+        off_side[2] = side(0.4 + 1e-6, 0.4, 0.8);
+        assert!(detect(&off_side, ProfileKind::OpenOnAxis, 0.0).is_none());
+        let dented = vec![
+            cap([0.0, 0.4], 0.4, PI / 2.0, -PI / 2.0),
+            side(0.4, 0.4, 1.2),
+            cap([0.0, 1.2], 0.4, 0.0, PI / 2.0),
+        ];
+        assert!(detect(&dented, ProfileKind::OpenOnAxis, 0.0).is_none());
+        assert!(detect(&capsule, ProfileKind::Closed, 0.0).is_none());
+    }
+
+    /// Capsules and balls against each other, sampled densely (a grid over each core and the
+    /// offset directions, which covers the solids): the closed form is never above a
+    /// realised distance, comes within the grid's spacing of the minimum, and its lower
+    /// bound is at most the upper.
+    #[test]
+    fn capsules_match_dense_sampling() {
+        let solids = [
+            OffsetSolid {
+                core: Core::Segment { z0: 0.4, z1: 1.2 },
+                radius: 0.4,
+                error: 0.0,
+            },
+            OffsetSolid {
+                core: Core::Segment { z0: -0.5, z1: 0.1 },
+                radius: 0.15,
+                error: 0.0,
+            },
+            OffsetSolid {
+                core: Core::Point { z: 0.3 },
+                radius: 0.5,
+                error: 0.0,
+            },
+        ];
+        let samples = |s: &OffsetSolid| {
+            let (z0, z1) = match s.core {
+                Core::Segment { z0, z1 } => (z0, z1),
+                Core::Point { z } => (z, z),
+                Core::Circle { .. } => unreachable!(),
+            };
+            let n = 12;
+            let mut v = Vec::new();
+            for i in 0..=n {
+                let z = z0 + (z1 - z0) * i as f64 / n as f64;
+                for j in 0..2 * n {
+                    for k in 0..=n {
+                        let (u, w) = (PI * j as f64 / n as f64, PI * (k as f64 / n as f64 - 0.5));
+                        let d = Vector3::new(w.cos() * u.cos(), w.cos() * u.sin(), w.sin());
+                        v.push(Point3::new(0.0, 0.0, z) + d * s.radius);
+                    }
+                }
+            }
+            v
+        };
+        let mut rng = Lcg(23);
+        for a in &solids {
+            for b in &solids {
+                for _ in 0..4 {
+                    let rot = UnitQuaternion::from_euler_angles(
+                        TAU * rng.f(),
+                        TAU * rng.f(),
+                        TAU * rng.f(),
+                    );
+                    let t = Translation3::new(rng.f() - 0.5, rng.f() - 0.5, 1.0 + 1.5 * rng.f());
+                    let pos = Isometry3::from_parts(t, rot);
+                    let r = offset_distance(a, b, &pos, 0.0).unwrap();
+                    assert!(r.lower <= r.upper);
+                    if r.overlap {
+                        continue;
+                    }
+                    let (pa, pb) = (samples(a), samples(b));
+                    let mut best = f64::INFINITY;
+                    for p in &pa {
+                        for q in &pb {
+                            best = best.min((p - pos * q).norm());
+                        }
+                    }
+                    assert!(r.lower <= best + 1e-12, "{} > {best}", r.lower);
+                    if r.value > 0.0 {
+                        assert!(r.value <= best + 1e-12, "{} > {best}", r.value);
+                        assert!(((r.point_a - r.point_b).norm() - r.value).abs() < 1e-12);
+                        // Grid spacing: pi / 12 of the radius, 0.8 / 12 along the core.
+                        assert!(best - r.value < 0.25, "{} vs {best}", r.value);
+                    }
+                }
+            }
+        }
+        // A capsule against a solid torus has no closed form here.
+        let torus = OffsetSolid {
+            core: Core::Circle { rho: 1.0, z: 0.0 },
+            radius: 0.2,
+            error: 0.0,
+        };
+        assert!(offset_distance(&solids[0], &torus, &Isometry3::identity(), 0.0).is_none());
     }
 }

@@ -35,7 +35,7 @@ pub(super) fn ball_distance(
     let ball = |t: &QueryTree| match t.offset {
         Some(o) => match o.core {
             Core::Point { z } => Some((Point3::new(0.0, 0.0, z), o.radius)),
-            Core::Circle { .. } => None,
+            Core::Segment { .. } | Core::Circle { .. } => None,
         },
         None => None,
     };

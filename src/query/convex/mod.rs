@@ -54,6 +54,7 @@ pub mod witness;
 
 use crate::bvh::containment::point_in_solid;
 use crate::bvh::convex::ConvexHullData;
+use crate::bvh::offset_solid::Core;
 use crate::bvh::QueryTree;
 use crate::query::certified::{Certified, TraversalStats};
 use crate::tolerances::SETTLE_REL;
@@ -163,7 +164,8 @@ pub fn convex_distance_traced(
         rounding,
         allowed,
     };
-    if ta.offset.is_some() || tb.offset.is_some() {
+    let ball = |t: &QueryTree| matches!(t.offset, Some(o) if matches!(o.core, Core::Point { .. }));
+    if ball(ta) || ball(tb) {
         if let Some(answer) = ball::ball_distance(ta, tb, pos_ab, &bounds, support_a, support_b) {
             return Some(answer);
         }

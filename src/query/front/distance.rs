@@ -198,7 +198,9 @@ fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut Query
     let pos_ab = a.relative_pose(b);
     let slack = query_slack(&a.tree, &b.tree, &pos_ab);
     if let (true, Some(oa), Some(ob)) = (opts.closed_form, &a.tree.offset, &b.tree.offset) {
-        return offset_distance(oa, ob, &pos_ab, slack).placed(&a.pose);
+        if let Some(answer) = offset_distance(oa, ob, &pos_ab, slack) {
+            return answer.placed(&a.pose);
+        }
     }
     if opts.convex_path && !opts.refine {
         let width = opts.tolerance.width(a.tree.target_eps, b.tree.target_eps);

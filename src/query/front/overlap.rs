@@ -329,13 +329,17 @@ pub fn inscribed_overlap(
     // Centre and radius of a sphere around an inscribed solid (its core on the axis).
     let sphere = |o: &OffsetSolid| match o.core {
         Core::Point { z } => (Point3::new(0.0, 0.0, z), o.radius),
+        Core::Segment { z0, z1 } => (
+            Point3::new(0.0, 0.0, 0.5 * (z0 + z1)),
+            0.5 * (z1 - z0) + o.radius,
+        ),
         Core::Circle { rho, z } => (Point3::new(0.0, 0.0, z), rho + o.radius),
     };
     let ((ca, ra), (cb, rb)) = (sphere(&ia), sphere(&ib));
     if (pos_ab * cb - ca).norm() >= ra + rb {
         return None;
     }
-    let answer = offset_distance(&ia, &ib, pos_ab, slack);
+    let answer = offset_distance(&ia, &ib, pos_ab, slack)?;
     answer.overlap.then_some(answer.point_a)
 }
 

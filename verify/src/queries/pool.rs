@@ -1,5 +1,5 @@
 //! The shapes cases draw from: built-in models, M_t frames, the frozen and seeded random
-//! profiles, and the balls and solid tori of the primitive campaign.
+//! profiles, and the balls, capsules and solid tori of the primitive campaign.
 
 use super::frozen::frozen_profiles;
 use crate::oracle::{self, PlanarIndex};
@@ -154,11 +154,12 @@ pub fn pool_shape_names() -> String {
 /// so the default campaign's draws are unchanged).
 pub const PRIMITIVE_PREFIX: &str = "prim-";
 
-/// Balls and solid tori of several proportions (one circle per profile): a thin ring that
-/// interlocks with itself, a fat one, a small ball, a ball off the origin and a big ball
-/// (room for nesting).
+/// Balls, capsules and solid tori of several proportions (offsets of a point, a segment of
+/// the axis or a circle): a thin ring that interlocks with itself, a fat one, a small ball, a
+/// ball off the origin, a big ball (room for nesting), a long thin capsule and a short fat
+/// one.
 fn primitive_profiles() -> Vec<(String, Profile)> {
-    use revdist::models::primitives::{arc, deg};
+    use revdist::models::primitives::{arc, deg, line, pt};
     let torus = |name: &str, rho: f64, z: f64, r: f64| {
         let c = arc([rho, z], r, deg(-90.0), deg(270.0)).expect("valid circle");
         (
@@ -173,7 +174,20 @@ fn primitive_profiles() -> Vec<(String, Profile)> {
             Profile::new(name, vec![c]).expect("valid ball"),
         )
     };
+    let capsule = |name: &str, z0: f64, z1: f64, r: f64| {
+        let pieces = vec![
+            arc([0.0, z0], r, deg(-90.0), 0.0).expect("valid quarter circle"),
+            line(pt(r, z0), pt(r, z1)).expect("valid side"),
+            arc([0.0, z1], r, 0.0, deg(90.0)).expect("valid quarter circle"),
+        ];
+        (
+            name.to_string(),
+            Profile::new(name, pieces).expect("valid capsule"),
+        )
+    };
     vec![
+        capsule("prim-capsule-long", -0.8, 0.9, 0.1),
+        capsule("prim-capsule-fat", 0.1, 0.4, 0.6),
         torus("prim-torus-thin", 1.0, 0.0, 0.12),
         torus("prim-torus-fat", 0.5, 0.2, 0.45),
         ball("prim-ball", 0.0, 0.3),
@@ -221,7 +235,8 @@ pub fn straight_span_profile() -> Profile {
 pub enum ShapeSet {
     /// The whole pool: built-in models, M_t frames, random profiles.
     All,
-    /// Balls and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`, `sphere`): the closed form.
+    /// Balls, capsules and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`, `sphere`,
+    /// `capsule`): the closed form (capsules against solid tori take the traversal).
     Primitives,
     /// Solids whose convexity revdist certifies (`revdist::bvh::convex::certify_convex`):
     /// the GJK path. The oracle knows nothing of convexity.
@@ -241,7 +256,8 @@ pub(super) fn pick(
                 let n = &shapes[i].name;
                 match set {
                     ShapeSet::Primitives => {
-                        n.starts_with(PRIMITIVE_PREFIX) || n == "ring" || n == "sphere"
+                        n.starts_with(PRIMITIVE_PREFIX)
+                            || ["ring", "sphere", "capsule"].contains(&n.as_str())
                     }
                     _ => shapes[i].convex,
                 }

@@ -34,8 +34,9 @@ pub struct CampaignOptions {
     pub regressions: bool,
     /// Failures printed in full.
     pub print_failures: usize,
-    /// Draw every solid from the balls and solid tori ([`PRIMITIVE_PREFIX`] shapes, `ring`,
-    /// `sphere`), whose queries take the closed form of `revdist::query::offset`.
+    /// Draw every solid from the balls, capsules and solid tori ([`PRIMITIVE_PREFIX`] shapes,
+    /// `ring`, `sphere`, `capsule`), whose queries take the closed form of
+    /// `revdist::query::closed_form` (a capsule against a solid torus the traversal).
     pub primitives: bool,
     /// Draw every solid from the shapes revdist certifies convex (the GJK path); ignored
     /// with `primitives`.
