@@ -17,7 +17,7 @@ pub struct Outcome {
     pub float: f64,
     pub count_exact: Option<usize>,
     pub count_float: usize,
-    /// Smallest separation of the exact roots theta (see [`CLUSTER_GAP`]).
+    /// Smallest separation of the exact roots theta (see [`CLUSTER_GAP`](super::CLUSTER_GAP)).
     pub min_root_gap: f64,
     pub companion_rel_err: Option<f64>,
     /// The double-precision inputs the solver saw (for pinning failures as regression tests).
