@@ -28,7 +28,7 @@ pub struct QueriesArgs {
     /// Leave out the fixed regression cases.
     #[arg(long)]
     no_regressions: bool,
-    /// Draw every solid from the balls and solid tori (closed-form queries).
+    /// Draw every solid from the balls, capsules and solid tori (closed-form queries).
     #[arg(long)]
     primitives: bool,
     /// Draw every solid from the shapes certified convex (the GJK path).
