@@ -1,10 +1,15 @@
-//! Shared pieces of the research drivers (the binaries under `src/bin/`).
+//! Shared pieces of the research drivers (the binaries under `src/bin/`), and the bodies of
+//! the larger drivers (`fcl_bench`, `pareto`, `peers`, `penetration`, `stability`, `tails`):
+//! a module folder each, whose binary is a thin `main`.
 
 pub mod args;
 pub mod baseline_mesh;
 pub mod cli;
 pub mod driver;
+pub mod fcl_bench;
+pub mod pareto;
 pub mod peers;
+pub mod penetration;
 pub mod plot;
 pub mod poses;
 pub mod progress;
@@ -19,5 +24,6 @@ pub use verify::shard_record;
 pub mod stability;
 pub mod stats;
 pub mod table;
+pub mod tails;
 
 pub use rng::{Draw, SplitMix};
