@@ -251,7 +251,7 @@ fn markdown(prov: &Provenance, rows: &[Row], samples: &[Sample], seeds: usize) -
          from a degenerate one (`delta` = 0 and 1e-16 .. 1e-1, {seeds} random perturbation \
          directions and rigid motions per family and delta). Written by \
          `target/release/stability`; cases, references and bounds are documented in \
-         `experiments/src/stability.rs`.\n"
+         `experiments/src/stability/`.\n"
     );
     let _ = writeln!(
         s,

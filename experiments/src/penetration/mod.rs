@@ -128,7 +128,7 @@ pub fn run(args: Args) -> DriverResult {
 
     let mut md = String::from(
         "# Penetration depth: certified interval width, time, coal's EPA\n\n\
-         `experiments/src/bin/penetration.rs`. Width target (ball and shallow): `upper - lower \
+         `experiments/src/penetration/`. Width target (ball and shallow): `upper - lower \
          <= max(2 (eps_a + eps_b), 5 % PD)`, PD replaced by its certified lower bound. Times: \
          thread CPU, `signed_distance` vs `distance` at the same pose, pair and eps.\n\n\
          | class | eps | cases | overlapping | width target met | median width / eps | p90 width / eps | median width / lower | median signed us | median distance us | median ratio | p90 ratio |\n\
