@@ -415,7 +415,10 @@ mod tests {
                 "{o:?}"
             );
             // The tree's own bound (below eps: the circles are fitted exactly) plus rounding.
-            assert!((o.radius - 0.4).abs() < 1e-12 && o.error <= eps + 1e-12, "{o:?}");
+            assert!(
+                (o.radius - 0.4).abs() < 1e-12 && o.error <= eps + 1e-12,
+                "{o:?}"
+            );
         }
         let (capsule, sphere, ring) = (
             solid("capsule", 1e-5),

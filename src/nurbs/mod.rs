@@ -13,7 +13,14 @@ use crate::limits::{
 use crate::num::cross2;
 use nalgebra::{Point2, Vector2};
 
+mod aabb;
 mod basis;
+mod knots;
+mod length;
+mod spans;
+
+pub use aabb::Aabb2;
+pub use spans::{halve_homogeneous, BezierSpan};
 
 use basis::{basis_derivatives, binomial};
 pub use basis::{basis_functions, find_span};
@@ -101,48 +108,6 @@ pub enum CurveError {
     ParameterOutOfRange { t: f64, start: f64, end: f64 },
 }
 
-/// Axis-aligned box in the (rho, z) plane.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Aabb2 {
-    /// Lower-left corner (min rho, min z).
-    pub min: Point2<f64>,
-    /// Upper-right corner (max rho, max z).
-    pub max: Point2<f64>,
-}
-
-impl Aabb2 {
-    /// The smallest box holding all `points`; `None` when there are none.
-    pub fn from_points<'a>(points: impl IntoIterator<Item = &'a Point2<f64>>) -> Option<Self> {
-        let mut it = points.into_iter();
-        let first = *it.next()?;
-        Some(it.fold(
-            Aabb2 {
-                min: first,
-                max: first,
-            },
-            |b, p| b.including(*p),
-        ))
-    }
-
-    /// This box grown to hold `p`.
-    pub fn including(self, p: Point2<f64>) -> Self {
-        Aabb2 {
-            min: Point2::new(self.min.x.min(p.x), self.min.y.min(p.y)),
-            max: Point2::new(self.max.x.max(p.x), self.max.y.max(p.y)),
-        }
-    }
-
-    /// The smallest box holding both.
-    pub fn union(self, other: Aabb2) -> Self {
-        self.including(other.min).including(other.max)
-    }
-
-    /// Length of the diagonal.
-    pub fn diagonal(&self) -> f64 {
-        (self.max - self.min).norm()
-    }
-}
-
 /// A NURBS curve of any degree in the (rho, z) plane; rational when weights are given.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NurbsCurve {
@@ -150,58 +115,6 @@ pub struct NurbsCurve {
     knots: Vec<f64>,
     points: Vec<Point2<f64>>,
     weights: Option<Vec<f64>>,
-}
-
-/// One Bezier span of a NURBS curve, in homogeneous form.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BezierSpan {
-    /// Start of the span's parameter interval in the parent curve.
-    pub t0: f64,
-    /// End of the span's parameter interval in the parent curve.
-    pub t1: f64,
-    /// Homogeneous Bernstein control points `(w rho, w z, w)`, `degree + 1` of them; the span is
-    /// `sum B_i(s) P_i` with `s = (t - t0) / (t1 - t0)` in [0, 1].
-    pub homogeneous: Vec<[f64; 3]>,
-}
-
-/// The two halves of a Bezier span at its middle parameter, by de Casteljau's algorithm on
-/// its homogeneous control points `(w rho, w z, w)` (each half keeps the degree).
-pub fn halve_homogeneous(points: &[[f64; 3]]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
-    let n = points.len();
-    let mut work = points.to_vec();
-    let mut left = Vec::with_capacity(n);
-    let mut right = Vec::with_capacity(n);
-    left.push(work[0]);
-    right.push(work[n - 1]);
-    for r in 1..n {
-        for i in 0..n - r {
-            let next = work[i + 1];
-            for (x, y) in work[i].iter_mut().zip(next) {
-                *x = 0.5 * (*x + y);
-            }
-        }
-        left.push(work[0]);
-        right.push(work[n - 1 - r]);
-    }
-    right.reverse();
-    (left, right)
-}
-
-impl BezierSpan {
-    /// Point of the span at local parameter `s` in [0, 1] (de Casteljau, homogeneous).
-    pub fn eval_local(&self, s: f64) -> Point2<f64> {
-        let mut q = self.homogeneous.clone();
-        let n = q.len();
-        for r in 1..n {
-            for i in 0..n - r {
-                let next = q[i + 1];
-                for (qc, nc) in q[i].iter_mut().zip(next) {
-                    *qc = (1.0 - s) * *qc + s * nc;
-                }
-            }
-        }
-        Point2::new(q[0][0] / q[0][2], q[0][1] / q[0][2])
-    }
 }
 
 impl NurbsCurve {
@@ -457,209 +370,17 @@ impl NurbsCurve {
         (n_prime * speed_sq - 3.0 * n * d[1].dot(&d[2])) / speed_sq.powf(2.5)
     }
 
-    /// Inserts knot `t` until it has multiplicity `degree` (Boehm's algorithm) and splits the
-    /// curve there: the two pieces together trace exactly the original curve.
-    pub fn split(&self, t: f64) -> Result<(NurbsCurve, NurbsCurve), CurveError> {
-        let (start, end) = self.domain();
-        if !(t > start && t < end) {
-            return Err(CurveError::ParameterOutOfRange { t, start, end });
-        }
-        let p = self.degree;
-        let refined = self.with_knot_multiplicity(t, p);
-        let first_after = refined.knots.iter().position(|&k| k > t).unwrap_or(0);
-        // The p copies of t sit just before `first_after`; the control point at the split is
-        // the last one of the left piece and the first one of the right piece.
-        let split_index = first_after - p - 1;
-        let mut left_knots: Vec<f64> = refined.knots[..first_after].to_vec();
-        left_knots.push(t);
-        let mut right_knots = vec![t];
-        right_knots.extend_from_slice(&refined.knots[first_after - p..]);
-        let left_n = split_index + 1;
-        let pts = &refined.points;
-        let ws = refined.weights.as_ref();
-        let left = NurbsCurve::new(
-            p,
-            left_knots,
-            pts[..left_n].to_vec(),
-            ws.map(|w| w[..left_n].to_vec()),
-        )?;
-        let right = NurbsCurve::new(
-            p,
-            right_knots,
-            pts[split_index..].to_vec(),
-            ws.map(|w| w[split_index..].to_vec()),
-        )?;
-        Ok((left, right))
-    }
-
-    /// This curve with knot `t` (inside the domain) raised to multiplicity `target`.
-    fn with_knot_multiplicity(&self, t: f64, target: usize) -> NurbsCurve {
-        let mut curve = self.clone();
-        let existing = curve.knots.iter().filter(|&&k| k == t).count();
-        for _ in existing..target {
-            curve = curve.insert_knot_once(t);
-        }
-        curve
-    }
-
-    /// Boehm knot insertion of `t` once, in homogeneous coordinates.
-    fn insert_knot_once(&self, t: f64) -> NurbsCurve {
-        let p = self.degree;
-        let k = find_span(p, &self.knots, t);
-        let n = self.points.len();
-        let mut hom: Vec<[f64; 3]> = Vec::with_capacity(n + 1);
-        for i in 0..=n {
-            if i + p <= k {
-                hom.push(self.homogeneous(i));
-            } else if i > k {
-                hom.push(self.homogeneous(i - 1));
-            } else {
-                let a = (t - self.knots[i]) / (self.knots[i + p] - self.knots[i]);
-                let (q0, q1) = (self.homogeneous(i - 1), self.homogeneous(i));
-                hom.push([
-                    (1.0 - a) * q0[0] + a * q1[0],
-                    (1.0 - a) * q0[1] + a * q1[1],
-                    (1.0 - a) * q0[2] + a * q1[2],
-                ]);
-            }
-        }
-        let mut knots = self.knots.clone();
-        knots.insert(k + 1, t);
-        from_homogeneous(p, knots, &hom, self.is_rational())
-    }
-
-    /// The same point set traversed backwards, on the same domain.
-    pub fn reversed(&self) -> NurbsCurve {
-        let (a, b) = (self.knots[0], self.knots[self.knots.len() - 1]);
-        NurbsCurve {
-            degree: self.degree,
-            knots: self.knots.iter().rev().map(|k| a + b - k).collect(),
-            points: self.points.iter().rev().copied().collect(),
-            weights: self
-                .weights
-                .as_ref()
-                .map(|w| w.iter().rev().copied().collect()),
-        }
-    }
-
     /// Box of the control points. With positive weights the curve lies in the convex hull of
     /// its control points, so this box certainly contains the curve.
     pub fn bounding_box(&self) -> Aabb2 {
         Aabb2::from_points(&self.points).expect("a curve has at least two control points")
     }
-
-    /// Arc length to within `tolerance` (absolute), by adaptive Gauss-Legendre quadrature of
-    /// the speed over each knot span.
-    pub fn arc_length(&self, tolerance: f64) -> f64 {
-        let tolerance = tolerance.max(f64::EPSILON);
-        let spans = self.distinct_spans();
-        let per_span = tolerance / spans.len() as f64;
-        spans
-            .iter()
-            .map(|&(a, b)| self.adaptive_length(a, b, per_span, 0))
-            .sum()
-    }
-
-    fn gauss_length(&self, a: f64, b: f64) -> f64 {
-        let (h, m) = (0.5 * (b - a), 0.5 * (a + b));
-        GAUSS_8
-            .iter()
-            .map(|&(x, w)| w * self.derivatives_up_to(m + h * x, 1)[1].norm())
-            .sum::<f64>()
-            * h
-    }
-
-    /// Adaptive Gauss-Legendre length of `[a, b]`; a non-finite estimate (a speed that
-    /// overflows) ends the recursion at once instead of refining to the depth cap.
-    fn adaptive_length(&self, a: f64, b: f64, tol: f64, depth: u32) -> f64 {
-        let whole = self.gauss_length(a, b);
-        let mid = 0.5 * (a + b);
-        let halves = self.gauss_length(a, mid) + self.gauss_length(mid, b);
-        if !halves.is_finite() || (whole - halves).abs() <= tol || depth >= MAX_LENGTH_DEPTH {
-            halves
-        } else {
-            self.adaptive_length(a, mid, 0.5 * tol, depth + 1)
-                + self.adaptive_length(mid, b, 0.5 * tol, depth + 1)
-        }
-    }
-
-    /// The non-empty knot spans `[k_i, k_{i+1}]` of the domain.
-    pub fn distinct_spans(&self) -> Vec<(f64, f64)> {
-        let (start, end) = self.domain();
-        let mut out = Vec::new();
-        for w in self.knots.windows(2) {
-            if w[1] > w[0] && w[0] >= start && w[1] <= end {
-                out.push((w[0], w[1]));
-            }
-        }
-        out
-    }
-
-    /// The curve as Bezier spans (every interior knot raised to multiplicity `degree`), in
-    /// homogeneous form: what Bernstein-form root isolation works on.
-    pub fn bezier_spans(&self) -> Vec<BezierSpan> {
-        let p = self.degree;
-        let mut curve = self.clone();
-        let interior: Vec<f64> = {
-            let (s, e) = self.domain();
-            let mut v: Vec<f64> = self
-                .knots
-                .iter()
-                .copied()
-                .filter(|&k| k > s && k < e)
-                .collect();
-            v.dedup();
-            v
-        };
-        for &t in &interior {
-            curve = curve.with_knot_multiplicity(t, p);
-        }
-        let mut bounds = vec![self.domain().0];
-        bounds.extend(interior);
-        bounds.push(self.domain().1);
-        bounds
-            .windows(2)
-            .enumerate()
-            .map(|(i, w)| BezierSpan {
-                t0: w[0],
-                t1: w[1],
-                homogeneous: (i * p..=i * p + p).map(|j| curve.homogeneous(j)).collect(),
-            })
-            .collect()
-    }
 }
-
-/// Eight-point Gauss-Legendre nodes and weights on [-1, 1].
-const GAUSS_8: [(f64, f64); 8] = [
-    (-0.960_289_856_497_536_2, 0.101_228_536_290_376_26),
-    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
-    (-0.525_532_409_916_329, 0.313_706_645_877_887_3),
-    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
-    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
-    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
-    (0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
-    (0.960_289_856_497_536_2, 0.101_228_536_290_376_26),
-];
-
-/// Recursion cap of the adaptive arc-length quadrature (2^30 sub-intervals per span).
-const MAX_LENGTH_DEPTH: u32 = 30;
 
 fn clamped_bezier_knots(degree: usize) -> Vec<f64> {
     let mut k = vec![0.0; degree + 1];
     k.extend(std::iter::repeat_n(1.0, degree + 1));
     k
-}
-
-fn from_homogeneous(p: usize, knots: Vec<f64>, hom: &[[f64; 3]], rational: bool) -> NurbsCurve {
-    NurbsCurve {
-        degree: p,
-        knots,
-        points: hom
-            .iter()
-            .map(|h| Point2::new(h[0] / h[2], h[1] / h[2]))
-            .collect(),
-        weights: rational.then(|| hom.iter().map(|h| h[2]).collect()),
-    }
 }
 
 #[cfg(test)]
