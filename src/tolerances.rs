@@ -86,10 +86,11 @@ pub const FLAT_SNAP: f64 = 1e-12;
 /// hull contains the arc exactly, not only up to rounding.
 pub const ROTATION_ROUNDING: f64 = 8.0 * f64::EPSILON;
 
-/// Largest error with which a tree's chain is detected as one circle (a ball or solid torus,
-/// [`crate::bvh::offset_solid::detect`]), relative to `1 + |centre| + r`: arcs fitted to an
-/// exact (rational) circle agree with it to rounding (~1e-15); anything farther is not
-/// treated as a circle (the traversal handles it). The detection error is added to the
+/// Largest error with which a tree's chain is detected as the offset of a point, a segment of
+/// the axis or a circle (a ball, capsule or solid torus, [`crate::bvh::offset_solid::detect`]),
+/// relative to `1 + |centre| + r` (both centres for a capsule): arcs fitted to an exact
+/// (rational) circle agree with it to rounding (~1e-15), and so do the fitted ends of an exact
+/// side; anything farther is not treated as an offset (the traversal handles it). The detection error is added to the
 /// closed form's interval.
 pub const DETECT_REL: f64 = 1e-9;
 

@@ -42,7 +42,7 @@ pub struct OffsetSolid {
 }
 
 /// Detects a chain of profile pieces that is the offset of a point, a segment of the axis
-/// or a circle: [`detect_circle`], else [`detect_capsule`]. `tree_eps` is the chain's
+/// or a circle: `detect_circle`, else `detect_capsule`. `tree_eps` is the chain's
 /// Hausdorff bound to the true profile.
 pub fn detect(chain: &[ProfileArc], kind: ProfileKind, tree_eps: f64) -> Option<OffsetSolid> {
     detect_circle(chain, kind, tree_eps).or_else(|| detect_capsule(chain, kind, tree_eps))

@@ -1,5 +1,6 @@
-//! Closed form of the distance between two balls or solid tori (both solids offsets of a
-//! point or a circle, [`crate::bvh::offset_solid`]), before any traversal.
+//! Closed form of the distance between two balls, capsules or solid tori (both solids
+//! offsets of a point, a segment of the axis or a circle, [`crate::bvh::offset_solid`]),
+//! before any traversal; a capsule against a solid torus is left to the other paths.
 //!
 //! A profile that is one circle of radius `r` revolves into a ball (an open profile: a half
 //! circle centred on the axis) or a solid torus (a closed profile: the full circle, off the
@@ -7,12 +8,16 @@
 //! a circle coaxial with it, so the distance between two such solids is the distance between
 //! their cores minus both radii, clamped at 0 (balls of radius `r` about every core point;
 //! the Minkowski argument). This needs one point/point, point/circle or circle/circle
-//! distance ([`crate::circle::min_distance`]) instead of a traversal.
+//! distance ([`crate::circle::min_distance`]) instead of a traversal. A capsule (a quarter
+//! circle, a side parallel to the axis, a quarter circle) is the offset of a segment of the
+//! axis: its distances to a ball's or a capsule's core are those of segments, with a
+//! separating slab for the lower bound (`segments.rs`).
 //!
 //! Certification: the tree's approximating chain (biarcs) lies within the tree's `eps` of
 //! the true profile, and is detected to lie within `detect_error` of the circle (each arc's
 //! centre and radius off by at most that, consecutive arcs joined, sweeps of one sign adding
-//! up to the full or half turn). So the true boundary is within `h = eps + detect_error` of
+//! up to the full or half turn; for a capsule, its side's ends off the side by at most that,
+//! [`crate::bvh::offset_solid`]). So the true boundary is within `h = eps + detect_error` of
 //! the offset surface, and the true solid contains the core's offset by `r - h` and lies in
 //! its offset by `r + h` (the profile curve winds once about the circle's centre). The
 //! distance between the true solids is therefore within `h_a + h_b` of the closed form.
@@ -33,7 +38,7 @@ use segments::{segment_distance, Segment3};
 /// Closest points of two cores (A's frame; B placed by `pos_ab`): a realised distance, a
 /// lower bound of the cores' distance up to the caller's slack (the circle solver's is its
 /// value, [`crate::tolerances::POSE_SLACK_REL`]; segments have their separating slab,
-/// [`segments`]) and the points. `None` for a segment against a circle (no closed form here;
+/// `segments.rs`) and the points. `None` for a segment against a circle (no closed form here;
 /// the traversal answers capsules against solid tori).
 fn core_distance(
     a: &Core,
