@@ -15,8 +15,6 @@ pub mod spiral;
 #[cfg(test)]
 mod test_curves;
 pub mod tree;
-#[cfg(test)]
-mod tree_tests;
 
 pub use arc::Arc;
 pub use disk::Disk;

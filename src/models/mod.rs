@@ -21,8 +21,6 @@ pub mod sampling;
 pub mod validate;
 
 #[cfg(test)]
-mod freeform_tests;
-#[cfg(test)]
 mod tests;
 
 pub use freeform::{freeform_names, FreeformReport, FREEFORM_NAMES};

@@ -535,3 +535,6 @@ impl<'a> Iterator for LeafIter<'a> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

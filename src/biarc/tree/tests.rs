@@ -1,8 +1,8 @@
 //! Tests of the biarc tree against dense sampling of the profile curves.
 
-use super::fit::PlanarCurve;
-use super::oracle::sampled_hausdorff;
-use super::tree::{BiarcTree, TreeError};
+use super::{BiarcTree, TreeError};
+use crate::biarc::fit::PlanarCurve;
+use crate::biarc::oracle::sampled_hausdorff;
 use crate::num::cross2;
 use crate::nurbs::NurbsCurve;
 use crate::poly::bernstein::Bernstein;
@@ -75,7 +75,7 @@ pub(crate) fn check_tree_with(profile: &Profile, tree: &BiarcTree, samples: usiz
             let bb = s.aabb;
             assert!(p.x >= bb.min.x && p.y >= bb.min.y && p.x <= bb.max.x && p.y <= bb.max.y);
         }
-        if s.bound() == super::tree::SpiralBound::ControlPolygon {
+        if s.bound() == crate::biarc::tree::SpiralBound::ControlPolygon {
             continue; // chords, G1 only where the chord is long enough for a midpoint
         }
         let defect = {
@@ -84,8 +84,10 @@ pub(crate) fn check_tree_with(profile: &Profile, tree: &BiarcTree, samples: usiz
         };
         let shortest = node.arcs()[0].length.min(node.arcs()[1].length);
         let g1 = match s.bound() {
-            super::tree::SpiralBound::ArcDeviation => super::tree::ARC_DEVIATION_G1_TOL,
-            _ => super::fit::G1_TOL,
+            crate::biarc::tree::SpiralBound::ArcDeviation => {
+                crate::biarc::tree::ARC_DEVIATION_G1_TOL
+            }
+            _ => crate::biarc::fit::G1_TOL,
         };
         let allowed = g1.max(64.0 * f64::EPSILON * 4.0 / shortest);
         assert!(
@@ -382,7 +384,7 @@ points = [[1.2, 0.5], [0.8, 0.2]]
 }
 
 /// Pieces whose spiral property rounding cannot establish build with chords and the
-/// control-polygon bound ([`super::tree::SpiralBound::ControlPolygon`]), and their nodes hold
+/// control-polygon bound ([`crate::biarc::tree::SpiralBound::ControlPolygon`]), and their nodes hold
 /// against dense sampling. Each profile failed before (reproducers of the stationary-point
 /// property test, `verify/regressions/near-stationary/`): a monotone stationary point on an
 /// exact line whose rounded control points make a micro-spiral ("not a short spiral"); a
@@ -392,13 +394,13 @@ points = [[1.2, 0.5], [0.8, 0.2]]
 /// noise test) while the bilens bound of ~5e-12 missed its true deviation of 1.3e-11.
 #[test]
 fn pieces_without_a_certain_spiral_use_control_polygon_bounds() {
-    use super::tree::SpiralBound;
+    use crate::biarc::tree::SpiralBound;
     // The regression files of the verify crate (one copy of the data).
     let texts = [
-        include_str!("../../verify/regressions/near-stationary/monotone-not-short-spiral.toml"),
-        include_str!("../../verify/regressions/near-stationary/fin-exact.toml"),
-        include_str!("../../verify/regressions/near-stationary/near-cusp.toml"),
-        include_str!("../../verify/regressions/near-stationary/perturbed-line.toml"),
+        include_str!("../../../verify/regressions/near-stationary/monotone-not-short-spiral.toml"),
+        include_str!("../../../verify/regressions/near-stationary/fin-exact.toml"),
+        include_str!("../../../verify/regressions/near-stationary/near-cusp.toml"),
+        include_str!("../../../verify/regressions/near-stationary/perturbed-line.toml"),
     ];
     for text in texts {
         let prof = degenerate_chain(text);
@@ -425,12 +427,12 @@ fn pieces_without_a_certain_spiral_use_control_polygon_bounds() {
 /// chords; the exact quarter circle that closes the quartic's profile uses the same bound.
 #[test]
 fn near_circles_use_arc_deviation_bounds() {
-    use super::tree::SpiralBound;
+    use crate::biarc::tree::SpiralBound;
     let texts = [
-        include_str!("../../verify/regressions/near-circle/quarter-bumped-a.toml"),
-        include_str!("../../verify/regressions/near-circle/quarter-bumped-b.toml"),
-        include_str!("../../verify/regressions/near-circle/quarter-bumped-c.toml"),
-        include_str!("../../verify/regressions/near-circle/quartic-bumped.toml"),
+        include_str!("../../../verify/regressions/near-circle/quarter-bumped-a.toml"),
+        include_str!("../../../verify/regressions/near-circle/quarter-bumped-b.toml"),
+        include_str!("../../../verify/regressions/near-circle/quarter-bumped-c.toml"),
+        include_str!("../../../verify/regressions/near-circle/quartic-bumped.toml"),
     ];
     for text in texts {
         let prof = degenerate_chain(text);
@@ -470,7 +472,7 @@ fn near_circle_arc(
     dirs: &mut impl Iterator<Item = f64>,
 ) -> NurbsCurve {
     let coordinate = |k: usize| {
-        let quadratic = super::test_curves::circle_arc_quadratic(c, r, a0, a1, 0.0);
+        let quadratic = crate::biarc::test_curves::circle_arc_quadratic(c, r, a0, a1, 0.0);
         let mut b = Bernstein::new(quadratic.iter().map(|q| q[k]).collect());
         while b.degree() < degree {
             b = b.elevate();
@@ -572,7 +574,7 @@ fn bezier_with_midknot(b: [Point2<f64>; 4]) -> Profile {
 /// as two spans merges into one such spiral, and every node holds against dense sampling.
 #[test]
 fn spirals_merged_across_knots_use_arc_deviation() {
-    use super::tree::SpiralBound;
+    use crate::biarc::tree::SpiralBound;
     let prof = bezier_with_midknot([p(0.5, 0.0), p(0.9, 0.0), p(1.2, 0.15), p(1.4, 0.5)]);
     for eps in [1e-3, 1e-5] {
         let tree = BiarcTree::build(&prof, eps).unwrap();

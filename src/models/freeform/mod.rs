@@ -264,3 +264,6 @@ fn fit_run(
         breaks.insert(worst + 1, 0.5 * (breaks[worst] + breaks[worst + 1]));
     }
 }
+
+#[cfg(test)]
+mod tests;

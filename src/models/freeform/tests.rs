@@ -1,14 +1,14 @@
-//! Checks of the freeform variants ([`super::freeform`]) against their exact models.
+//! Checks of the freeform variants ([`super`]) against their exact models.
 
 use std::sync::Arc;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector2, Vector3};
 
-use super::fit::{chain_tangents, unit_tangent, Join};
-use super::freeform::{fit_report, FREEFORM_FIT_TOLERANCE, FREEFORM_NAMES, FREEFORM_SOURCES};
-use super::validate::{min_interior_rho, polyline_self_intersection, sampled_hausdorff};
-use super::*;
+use super::{fit_report, FREEFORM_FIT_TOLERANCE, FREEFORM_NAMES, FREEFORM_SOURCES};
 use crate::biarc::tree::BiarcTree;
+use crate::models::fit::{chain_tangents, unit_tangent, Join};
+use crate::models::validate::{min_interior_rho, polyline_self_intersection, sampled_hausdorff};
+use crate::models::*;
 use crate::profile::ProfileKind;
 use crate::query::{distance, QueryOptions};
 use crate::solid::Solid;
@@ -25,7 +25,7 @@ const FREEFORM_HAUSDORFF_BOUND: f64 = 1e-4;
 const HAUSDORFF_SAMPLES_PER_SPAN: usize = 1024;
 
 /// Relative amount by which the sampled Hausdorff distance may exceed the fit's reported
-/// deviation: the deviation is a maximum over [`super::freeform::ERROR_SAMPLES_PER_SPAN`]
+/// deviation: the deviation is a maximum over [`super::ERROR_SAMPLES_PER_SPAN`]
 /// samples per span and can miss the peak between two of them by about a percent.
 const DEVIATION_SAMPLING_MARGIN: f64 = 0.05;
 

@@ -392,5 +392,4 @@ pub fn nesting(
 }
 
 #[cfg(test)]
-#[path = "overlap_tests.rs"]
 mod tests;
