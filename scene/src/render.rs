@@ -205,7 +205,7 @@ impl SceneRenderer {
         for (i, body) in scene.bodies.iter().enumerate() {
             let deforming = body.effect == crate::format::Effect::Deforming;
             if self.meshes[i].is_none() || deforming {
-                let profile = crate::runner::shape_profile(body, frame.time)
+                let profile = crate::format::shape_profile(body, frame.time)
                     .map_err(|e| format!("body '{}': {e}", body.name))?;
                 // Small shapes (thin tori) get a finer bound: 1% of their profile's size.
                 let bb = profile.bounding_box();

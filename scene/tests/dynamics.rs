@@ -2,9 +2,10 @@
 //! an interlocked chain, the counters (no dynamics work unless asked for, static-static pairs
 //! never queried) and the errors of bad dynamic fields.
 
+use revdist_scene::format::torus_profile;
 use revdist_scene::format::Scene;
 use revdist_scene::mass::mass_properties;
-use revdist_scene::runner::{run, torus_profile, Counters, Frame};
+use revdist_scene::runner::{run, Counters, Frame};
 use std::f64::consts::PI;
 use std::path::Path;
 

@@ -105,6 +105,7 @@ mod generators;
 mod load;
 mod model;
 mod reach;
+mod shape;
 mod spec;
 mod validate;
 mod validate_body;
@@ -115,5 +116,6 @@ pub use model::{
     Body, DynamicBody, DynamicsSettings, Effect, Link, MassSpec, Measure, Render, Scene, Shape,
     Track,
 };
+pub use shape::{shape_profile, torus_profile};
 pub use spec::{KeyframeSpec, MorphSpec, PoseSpec, RandomMotionSpec, TorusSpec};
 pub use values::pose_of;

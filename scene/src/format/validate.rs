@@ -5,6 +5,7 @@ use super::error::{field_error, SceneError};
 use super::generators::ring_mesh_bodies;
 use super::model::{Body, DynamicsSettings, Effect, Measure, Render, Scene};
 use super::reach::check_reach;
+use super::shape::shape_profile;
 use super::spec::{MeasureSpec, SceneSpec, ToleranceSpec};
 use super::validate_body::check_body;
 use super::values::{count_in, positive, positive_length, translation, vec3};
@@ -246,7 +247,7 @@ fn check_dynamics(
 fn check_eps_against_sizes(eps: f64, bodies: &[Body]) -> Result<(), SceneError> {
     let largest = bodies
         .iter()
-        .filter_map(|b| crate::runner::shape_profile(b, 0.0).ok())
+        .filter_map(|b| shape_profile(b, 0.0).ok())
         .map(|p| p.bounding_box().diagonal())
         .reduce(f64::max);
     match largest {
