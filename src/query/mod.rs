@@ -40,6 +40,7 @@ pub mod convex;
 mod front;
 pub mod penetration;
 pub mod search;
+mod simplex;
 
 pub use certified::{Certified, TraversalStats};
 pub use front::batch::{distances, try_distances};

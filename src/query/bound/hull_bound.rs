@@ -23,10 +23,10 @@
 //! 72% of the leaf pairs that then went to an exact solve (848 pairs, three model pairs at
 //! eps 1e-4) that the converged bound prunes.
 
-pub use super::simplex::PointPair;
-use super::simplex::Simplex;
 use crate::bvh::hull::{HullRef, ParallelHull, PieceHull};
 use crate::bvh::patch::ProfileArc;
+pub use crate::query::simplex::PointPair;
+use crate::query::simplex::Simplex;
 use crate::tolerances::{BOUND_SLACK, GAP_REL, WITNESS_GAP_REL};
 use nalgebra::{Isometry3, Vector3};
 

@@ -14,6 +14,7 @@
 //! The iteration stops when the gap is within the caller's target, when a support point
 //! brings no progress (the gap is at rounding level), or after [`MAX_ITERATIONS`].
 
+use crate::query::simplex::{PointPair, Simplex};
 use nalgebra::{Point3, Vector3};
 
 /// Iteration cap: smooth convex sets converge to rounding in a few dozen iterations.
@@ -22,14 +23,6 @@ pub const MAX_ITERATIONS: usize = 64;
 /// Relative progress below which a new support point is taken as no progress:
 /// `|v|^2 - v . w <= NO_PROGRESS_REL |v|^2` (a few ulps of the squared distance).
 const NO_PROGRESS_REL: f64 = 1e-14;
-
-/// One vertex of the simplex: `w = a - b`.
-#[derive(Debug, Clone, Copy)]
-struct Vertex {
-    w: Vector3<f64>,
-    a: Point3<f64>,
-    b: Point3<f64>,
-}
 
 /// What GJK established.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,7 +60,7 @@ pub fn gjk(
     let mut g = Gjk::new(support_a, support_b, initial, tiny);
     loop {
         g.probe();
-        if g.len > 0 && g.gap() <= target_gap {
+        if g.simplex.len() > 0 && g.gap() <= target_gap {
             break;
         }
         if g.advance() != Status::Running {
@@ -97,11 +90,9 @@ pub struct Gjk<SA, SB> {
     support_a: SA,
     support_b: SB,
     v: Vector3<f64>,
-    simplex: [Vertex; 4],
-    lambdas: [f64; 4],
-    len: usize,
-    /// The support point for the current `v` (after a probe).
-    new: Option<Vertex>,
+    simplex: Simplex,
+    /// The support point for the current `v` (after a probe): `w = a - b` and `(a, b)`.
+    new: Option<(Vector3<f64>, PointPair)>,
     lower: f64,
     upper: f64,
     tiny: f64,
@@ -116,11 +107,6 @@ where
 {
     /// A run from direction `initial` (a guess of `p_A - p_B`); `tiny` as for [`gjk`].
     pub fn new(support_a: SA, support_b: SB, initial: Vector3<f64>, tiny: f64) -> Self {
-        let zero = Vertex {
-            w: Vector3::zeros(),
-            a: Point3::origin(),
-            b: Point3::origin(),
-        };
         Gjk {
             support_a,
             support_b,
@@ -129,9 +115,7 @@ where
             } else {
                 Vector3::x()
             },
-            simplex: [zero; 4],
-            lambdas: [0.0; 4],
-            len: 0,
+            simplex: Simplex::default(),
             new: None,
             lower: f64::NEG_INFINITY,
             upper: f64::INFINITY,
@@ -150,10 +134,10 @@ where
         let d = -self.v;
         let a = (self.support_a)(&d);
         let b = (self.support_b)(&-d);
-        let new = Vertex { w: a - b, a, b };
+        let w = a - b;
         let vv = self.v.norm_squared();
-        self.lower = self.lower.max(self.v.dot(&new.w) / vv.sqrt());
-        self.new = Some(new);
+        self.lower = self.lower.max(self.v.dot(&w) / vv.sqrt());
+        self.new = Some((w, (a, b)));
     }
 
     /// `upper - lower` (infinite before the first [`Gjk::advance`]).
@@ -178,31 +162,24 @@ where
             return Status::Intersect;
         }
         self.probe();
-        let new = self.new.expect("probed");
+        let (w, pair) = self.new.expect("probed");
         if self.iterations >= MAX_ITERATIONS {
             return Status::Stalled;
         }
         let vv = self.v.norm_squared();
-        let vw = self.v.dot(&new.w);
-        let len = self.len;
-        if (len > 0 && vv - vw <= NO_PROGRESS_REL * vv)
-            || self.simplex[..len].iter().any(|s| s.w == new.w)
+        let vw = self.v.dot(&w);
+        // No progress, or a vertex repeated (the simplex refuses it).
+        if (self.simplex.len() > 0 && vv - vw <= NO_PROGRESS_REL * vv)
+            || !self.simplex.push(w, pair)
         {
             return Status::Stalled;
         }
         self.iterations += 1;
         self.new = None;
-        self.simplex[len] = new;
-        let (closest, face) = closest_to_origin(&self.simplex[..len + 1]);
-        let old = self.simplex;
-        self.len = face.len;
-        for k in 0..face.len {
-            self.simplex[k] = old[face.idx[k]];
-            self.lambdas[k] = face.weight[k];
-        }
+        let closest = self.simplex.closest_to_origin();
         self.v = closest;
         self.upper = closest.norm();
-        if self.upper <= self.tiny || self.len == 4 {
+        if self.upper <= self.tiny || self.simplex.len() == 4 {
             self.intersect = true;
             return Status::Intersect;
         }
@@ -211,193 +188,37 @@ where
 
     /// The simplex's support points of A and of B (as many as its vertices).
     pub fn support_points(&self) -> impl Iterator<Item = (Point3<f64>, Point3<f64>)> + '_ {
-        self.simplex[..self.len].iter().map(|s| (s.a, s.b))
+        self.simplex.pairs().iter().copied()
     }
 
     /// The closest points so far and the bounds.
     pub fn result(&self) -> GjkResult {
-        let simplex = &self.simplex[..self.len];
-        let (mut pa, mut pb) = (Vector3::zeros(), Vector3::zeros());
-        for (s, &l) in simplex.iter().zip(&self.lambdas) {
-            pa += s.a.coords * l;
-            pb += s.b.coords * l;
-        }
-        let single = |f: fn(&Vertex) -> Point3<f64>| {
-            !simplex.is_empty() && simplex.iter().all(|s| f(s) == f(&simplex[0]))
+        let pairs = self.simplex.pairs();
+        let (mut pa, mut pb) = self
+            .simplex
+            .combination()
+            .unwrap_or((Point3::origin(), Point3::origin()));
+        let single = |f: fn(&PointPair) -> Point3<f64>| {
+            !pairs.is_empty() && pairs.iter().all(|s| f(s) == f(&pairs[0]))
         };
-        let (single_a, single_b) = (single(|s| s.a), single(|s| s.b));
+        let (single_a, single_b) = (single(|s| s.0), single(|s| s.1));
         if single_a {
-            pa = simplex[0].a.coords;
+            pa = pairs[0].0;
         }
         if single_b {
-            pb = simplex[0].b.coords;
+            pb = pairs[0].1;
         }
         GjkResult {
             lower: self.lower,
             upper: (pa - pb).norm(),
-            point_a: Point3::from(pa),
-            point_b: Point3::from(pb),
+            point_a: pa,
+            point_b: pb,
             intersect: self.intersect,
             single_a,
             single_b,
             iterations: self.iterations,
         }
     }
-}
-
-/// The point of the simplex's hull closest to the origin, and the face (vertex indices and
-/// barycentric weights) it lies in; the whole tetrahedron when it contains the origin.
-/// Region tests after Ericson, *Real-Time Collision Detection*, 5.1.
-fn closest_to_origin(simplex: &[Vertex]) -> (Vector3<f64>, Face) {
-    let w = |i: usize| simplex[i].w;
-    match simplex.len() {
-        1 => (w(0), Face::of(&[(0, 1.0)])),
-        2 => segment(w(0), w(1), [0, 1]),
-        3 => triangle(w(0), w(1), w(2), [0, 1, 2]),
-        _ => tetrahedron(simplex),
-    }
-}
-
-/// Vertices of a face of the simplex (indices) and barycentric weights.
-#[derive(Debug, Clone, Copy, Default)]
-struct Face {
-    idx: [usize; 4],
-    weight: [f64; 4],
-    len: usize,
-}
-
-impl Face {
-    fn of(entries: &[(usize, f64)]) -> Face {
-        let mut f = Face::default();
-        for &(i, l) in entries {
-            f.idx[f.len] = i;
-            f.weight[f.len] = l;
-            f.len += 1;
-        }
-        f
-    }
-}
-
-fn segment(a: Vector3<f64>, b: Vector3<f64>, id: [usize; 2]) -> (Vector3<f64>, Face) {
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let t = if len2 > 0.0 { -a.dot(&ab) / len2 } else { 0.0 };
-    if t <= 0.0 {
-        (a, Face::of(&[(id[0], 1.0)]))
-    } else if t >= 1.0 {
-        (b, Face::of(&[(id[1], 1.0)]))
-    } else {
-        (a + ab * t, Face::of(&[(id[0], 1.0 - t), (id[1], t)]))
-    }
-}
-
-fn triangle(
-    a: Vector3<f64>,
-    b: Vector3<f64>,
-    c: Vector3<f64>,
-    id: [usize; 3],
-) -> (Vector3<f64>, Face) {
-    let (ab, ac) = (b - a, c - a);
-    let ap = -a;
-    let (d1, d2) = (ab.dot(&ap), ac.dot(&ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return (a, Face::of(&[(id[0], 1.0)]));
-    }
-    let bp = -b;
-    let (d3, d4) = (ab.dot(&bp), ac.dot(&bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return (b, Face::of(&[(id[1], 1.0)]));
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return segment(a, b, [id[0], id[1]]);
-    }
-    let cp = -c;
-    let (d5, d6) = (ab.dot(&cp), ac.dot(&cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return (c, Face::of(&[(id[2], 1.0)]));
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return segment(a, c, [id[0], id[2]]);
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-        return segment(b, c, [id[1], id[2]]);
-    }
-    let denom = va + vb + vc;
-    if denom.is_nan() || denom <= 0.0 {
-        // Degenerate (collinear) triangle: the best of its edges.
-        return best([
-            segment(a, b, [id[0], id[1]]),
-            segment(a, c, [id[0], id[2]]),
-            segment(b, c, [id[1], id[2]]),
-        ]);
-    }
-    let (v, w) = (vb / denom, vc / denom);
-    let u = 1.0 - v - w;
-    (
-        a + ab * v + ac * w,
-        Face::of(&[(id[0], u), (id[1], v), (id[2], w)]),
-    )
-}
-
-fn best<const N: usize>(options: [(Vector3<f64>, Face); N]) -> (Vector3<f64>, Face) {
-    let mut out = options[0];
-    for o in &options[1..] {
-        if o.0.norm_squared() < out.0.norm_squared() {
-            out = *o;
-        }
-    }
-    out
-}
-
-fn tetrahedron(s: &[Vertex]) -> (Vector3<f64>, Face) {
-    let p = [s[0].w, s[1].w, s[2].w, s[3].w];
-    // Faces with the opposite vertex; the origin is outside a face when it and the opposite
-    // vertex lie on different sides of the face's plane. Only the faces through the newest
-    // vertex (3) are tested: the old triangle's closest point `v` was inside it, so its
-    // plane is orthogonal to `v`, and the origin and the new support point (`v . w < |v|^2`,
-    // [`Gjk::advance`] checks progress) lie on the same side of it. (Should rounding put the
-    // origin outside that face, the run reports an intersection, which the convex path
-    // certifies independently or declines.)
-    let faces = [([0, 1, 3], 2), ([0, 2, 3], 1), ([1, 2, 3], 0)];
-    let mut out: Option<(Vector3<f64>, Face)> = None;
-    let mut inside = true;
-    for (f, opposite) in faces {
-        let (a, b, c) = (p[f[0]], p[f[1]], p[f[2]]);
-        let n = (b - a).cross(&(c - a));
-        let side_origin = -a.dot(&n);
-        let side_opposite = (p[opposite] - a).dot(&n);
-        if side_origin * side_opposite >= 0.0 && side_opposite != 0.0 {
-            continue;
-        }
-        inside = false;
-        let cand = triangle(a, b, c, f);
-        match out {
-            Some(o) if o.0.norm_squared() <= cand.0.norm_squared() => {}
-            _ => out = Some(cand),
-        }
-    }
-    if inside {
-        // Barycentric weights of the origin: signed volumes.
-        let vol = |a: Vector3<f64>, b: Vector3<f64>, c: Vector3<f64>, d: Vector3<f64>| {
-            (b - a).dot(&(c - a).cross(&(d - a)))
-        };
-        let total = vol(p[0], p[1], p[2], p[3]);
-        let o = Vector3::zeros();
-        let l = [
-            vol(o, p[1], p[2], p[3]) / total,
-            vol(p[0], o, p[2], p[3]) / total,
-            vol(p[0], p[1], o, p[3]) / total,
-            vol(p[0], p[1], p[2], o) / total,
-        ];
-        return (
-            Vector3::zeros(),
-            Face::of(&[(0, l[0]), (1, l[1]), (2, l[2]), (3, l[3])]),
-        );
-    }
-    out.expect("a face is outside when the origin is not inside")
 }
 
 #[cfg(test)]

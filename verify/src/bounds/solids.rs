@@ -1,5 +1,5 @@
 //! Whole-solid configurations for the two links of the chain that answer without the
-//! traversal: the closed forms of balls and solid tori (`query/closed_form/mod.rs`) and the
+//! traversal: the closed forms of balls, capsules and solid tori (`query/closed_form/mod.rs`) and the
 //! convex path's certified interval (`query/convex/`, GJK's dual bound). Each configuration
 //! is two primitive solids drawn with random proportions at a scale log-uniform in
 //! [1e-3, 1e3], built from exact NURBS profiles, and B's pose: mostly a contact of two
@@ -65,8 +65,8 @@ impl Primitive {
     }
 }
 
-/// Balls and solid tori: the closed forms.
-const CLOSED_FORM: [Primitive; 2] = [Primitive::Ball, Primitive::Torus];
+/// Balls, capsules and solid tori: the closed forms (a capsule against a torus: the search).
+const CLOSED_FORM: [Primitive; 3] = [Primitive::Ball, Primitive::Capsule, Primitive::Torus];
 
 /// Convex solids: the convex path.
 const CONVEX: [Primitive; 5] = [

@@ -1,7 +1,8 @@
-//! The simplex of a hull iteration ([`mod@super::hull_bound`]): up to four points of the two
-//! hulls' Minkowski difference and the point of their convex hull closest to the origin, by
-//! Voronoi regions (Gilbert, Johnson and Keerthi 1988; Ericson 2005, sections 5.1.5 and
-//! 9.5.2), with the pair of hull points behind it.
+//! The simplex of GJK (Gilbert, Johnson and Keerthi 1988), the one step both GJK iterations
+//! of the query share: the convex path's ([`crate::query::convex`]) and the hull bounds'
+//! ([`mod@crate::query::bound::hull_bound`]). Up to four points of two sets' Minkowski
+//! difference and the point of their convex hull closest to the origin, by Voronoi regions
+//! (Ericson 2005, sections 5.1.5 and 9.5.2), with the pair of set points behind each.
 
 use nalgebra::{Point3, Vector3};
 
@@ -31,19 +32,37 @@ impl Simplex {
         true
     }
 
-    /// The hulls' points whose difference is the last closest point (`None` before the
-    /// first one, or when it was the origin).
-    pub(crate) fn witness(&self) -> Option<PointPair> {
-        if self.len == 0 || self.len == 4 {
+    /// How many vertices the simplex keeps.
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// The pairs of set points behind the vertices kept.
+    pub(crate) fn pairs(&self) -> &[PointPair] {
+        &self.pairs[..self.len]
+    }
+
+    /// The same convex combination of each set's points as the last closest point of the
+    /// difference (the origin's, when the simplex holds it); `None` before the first.
+    pub(crate) fn combination(&self) -> Option<PointPair> {
+        if self.len == 0 {
             return None;
         }
-        let mut p = Vector3::zeros();
-        let mut q = Vector3::zeros();
+        let (mut p, mut q) = (Vector3::zeros(), Vector3::zeros());
         for i in 0..self.len {
             p += self.pairs[i].0.coords * self.weights[i];
             q += self.pairs[i].1.coords * self.weights[i];
         }
         Some((Point3::from(p), Point3::from(q)))
+    }
+
+    /// The sets' points whose difference is the last closest point (`None` before the
+    /// first one, or when it was the origin).
+    pub(crate) fn witness(&self) -> Option<PointPair> {
+        if self.len == 4 {
+            return None;
+        }
+        self.combination()
     }
 
     /// The point of the simplex's hull closest to the origin; the simplex keeps only the
@@ -67,7 +86,9 @@ impl Simplex {
             _ => self.tetrahedron_feature(),
         };
         if f.len == 4 {
-            // The origin is inside: the caller stops on `|v| = 0`.
+            // The origin is inside: the caller stops on `|v| = 0`; the weights are the
+            // origin's barycentric coordinates ([`Simplex::combination`]).
+            self.weights = f.weight;
             return Vector3::zeros();
         }
         let v = f.point(&self.points);
@@ -104,10 +125,10 @@ impl Simplex {
                 best = Some((d, f));
             }
         }
-        best.map_or(
-            Feature {
+        best.map_or_else(
+            || Feature {
                 index: [0, 1, 2, 3],
-                weight: [0.25; 4],
+                weight: origin_weights(p),
                 len: 4,
             },
             |(_, f)| f,
@@ -117,6 +138,21 @@ impl Simplex {
 
 /// A vertex, edge or face of a simplex: up to three vertex indices and their barycentric
 /// weights (four for the whole tetrahedron).
+/// Barycentric coordinates of the origin in the tetrahedron `p` (ratios of signed volumes).
+fn origin_weights(p: &[Vector3<f64>; 4]) -> [f64; 4] {
+    let volume = |a: Vector3<f64>, b: Vector3<f64>, c: Vector3<f64>, d: Vector3<f64>| {
+        (b - a).dot(&(c - a).cross(&(d - a)))
+    };
+    let total = volume(p[0], p[1], p[2], p[3]);
+    let o = Vector3::zeros();
+    [
+        volume(o, p[1], p[2], p[3]) / total,
+        volume(p[0], o, p[2], p[3]) / total,
+        volume(p[0], p[1], o, p[3]) / total,
+        volume(p[0], p[1], p[2], o) / total,
+    ]
+}
+
 #[derive(Debug, Clone, Copy)]
 struct Feature {
     index: [u8; 4],
