@@ -134,6 +134,11 @@ pub fn query_slack(ta: &QueryTree, tb: &QueryTree, pos_ab: &Isometry3<f64>) -> f
 
 /// Checks that a query between `a` and `b` is within the representable range.
 pub fn check_query(a: &Solid, b: &Solid) -> Result<(), QueryError> {
+    check_posed(a, b, &a.relative_pose(b))
+}
+
+/// [`check_query`] with B's pose in A's frame, `pos_ab`, already computed.
+fn check_posed(a: &Solid, b: &Solid, pos_ab: &Isometry3<f64>) -> Result<(), QueryError> {
     let finite = |p: &Isometry3<f64>| {
         p.translation.vector.iter().all(|x| x.is_finite())
             && p.rotation.coords.iter().all(|x| x.is_finite())
@@ -144,8 +149,7 @@ pub fn check_query(a: &Solid, b: &Solid) -> Result<(), QueryError> {
     if a.tree.nodes.is_empty() || b.tree.nodes.is_empty() {
         return Err(QueryError::EmptySolid);
     }
-    let t = a.relative_pose(b).translation.vector;
-    let tmax = t.amax();
+    let tmax = pos_ab.translation.vector.amax();
     let scale = 1.0 + tmax + extent(&a.tree) + extent(&b.tree);
     // NaN fails `is_finite`; a finite scale must not exceed the range.
     if !scale.is_finite() || scale > MAX_SCALE {
@@ -166,8 +170,9 @@ pub fn try_distance_cached(
     opts: &QueryOptions,
     cache: &mut QueryCache,
 ) -> Result<Distance, QueryError> {
-    check_query(a, b)?;
-    Ok(checked_distance(a, b, opts, cache))
+    let pos_ab = a.relative_pose(b);
+    check_posed(a, b, &pos_ab)?;
+    Ok(checked_distance(a, b, &pos_ab, opts, cache))
 }
 
 /// [`distance`] with a warm start from `cache`, which is updated.
@@ -194,8 +199,14 @@ pub fn distance_cached(
 }
 
 /// The query proper, for solids that passed [`check_query`].
-fn checked_distance(a: &Solid, b: &Solid, opts: &QueryOptions, cache: &mut QueryCache) -> Distance {
-    let pos_ab = a.relative_pose(b);
+fn checked_distance(
+    a: &Solid,
+    b: &Solid,
+    pos_ab: &Isometry3<f64>,
+    opts: &QueryOptions,
+    cache: &mut QueryCache,
+) -> Distance {
+    let pos_ab = *pos_ab;
     let slack = query_slack(&a.tree, &b.tree, &pos_ab);
     if let (true, Some(oa), Some(ob)) = (opts.closed_form, &a.tree.offset, &b.tree.offset) {
         if let Some(answer) = offset_distance(oa, ob, &pos_ab, slack) {
