@@ -58,37 +58,15 @@ fn detect_circle(chain: &[ProfileArc], kind: ProfileKind, tree_eps: f64) -> Opti
     if radius.is_nan() || radius <= 0.0 || !center.coords.iter().all(|x| x.is_finite()) {
         return None;
     }
-    let mut off = 0.0f64;
-    let mut sweep_sum = 0.0;
-    let mut sign = 0.0f64;
-    for p in chain {
-        let ProfileArc::Arc {
-            center: c,
-            radius: r,
-            sweep,
-            ..
-        } = *p
-        else {
-            return None;
-        };
-        // Every point of this arc is within |c - center| + |r - radius| of the circle.
-        off = off.max((c - center).norm() + (r - radius).abs());
-        if sweep == 0.0 {
-            continue;
-        }
-        if sign == 0.0 {
-            sign = sweep.signum();
-        } else if sweep.signum() != sign {
-            return None;
-        }
-        sweep_sum += sweep.abs();
+    // Every arc, each within `off` of the circle (`|c - center| + |r - radius|`), turning
+    // one way.
+    let (arcs, off, sweep_sum, _) = lead_arcs(chain.iter(), center, radius, f64::INFINITY)?;
+    if arcs != chain.len() {
+        return None;
     }
     // Gaps between consecutive pieces (and the closing one for a loop) leave parts of the
     // circle uncovered by at most the gap.
-    let mut gap = 0.0f64;
-    for w in chain.windows(2) {
-        gap = gap.max((w[1].start() - w[0].end()).norm());
-    }
+    let mut gap = largest_gap(chain);
     let (turn, core, axis_off) = match kind {
         ProfileKind::Closed => {
             gap = gap.max((chain[0].start() - chain[chain.len() - 1].end()).norm());
@@ -119,10 +97,19 @@ fn detect_circle(chain: &[ProfileArc], kind: ProfileKind, tree_eps: f64) -> Opti
     })
 }
 
-/// The arcs at one end of a capsule's chain: how many lead pieces are arcs about `center`
-/// (within `tol`), the largest distance of their points from the circle of radius `radius`
-/// about it (`|c - center| + |r - radius|`), their total sweep and its sign (0 for none).
-fn cap_arcs<'a>(
+/// The largest gap between consecutive pieces of `chain`.
+fn largest_gap(chain: &[ProfileArc]) -> f64 {
+    chain
+        .windows(2)
+        .map(|w| (w[1].start() - w[0].end()).norm())
+        .fold(0.0, f64::max)
+}
+
+/// The lead arcs of `pieces` about one centre (a capsule's end, or a whole circle): how many
+/// lead pieces are arcs about `center` (within `tol`), the largest distance of their points
+/// from the circle of radius `radius` about it (`|c - center| + |r - radius|`), their total
+/// sweep and its sign (0 for none); `None` when their sweeps change sign.
+fn lead_arcs<'a>(
     pieces: impl Iterator<Item = &'a ProfileArc>,
     center: Point2<f64>,
     radius: f64,
@@ -195,8 +182,8 @@ fn detect_capsule(chain: &[ProfileArc], kind: ProfileKind, tree_eps: f64) -> Opt
     }
     let scale = 1.0 + c0.coords.norm() + c1.coords.norm() + radius;
     let tol = DETECT_REL * scale;
-    let (lead, off0, sweep0, sign0) = cap_arcs(chain.iter(), c0, radius, tol)?;
-    let (trail, off1, sweep1, sign1) = cap_arcs(chain.iter().rev(), c1, radius, tol)?;
+    let (lead, off0, sweep0, sign0) = lead_arcs(chain.iter(), c0, radius, tol)?;
+    let (trail, off1, sweep1, sign1) = lead_arcs(chain.iter().rev(), c1, radius, tol)?;
     // The chain runs from the pole of `c0` away from `c1` to the pole of `c1` away from
     // `c0`, turning towards the side: counter-clockwise when it climbs.
     let climb = (c1.y - c0.y).signum();
@@ -218,10 +205,7 @@ fn detect_capsule(chain: &[ProfileArc], kind: ProfileKind, tree_eps: f64) -> Opt
             side_off = side_off.max((q.x - radius).abs() + beyond);
         }
     }
-    let mut gap = 0.0f64;
-    for w in chain.windows(2) {
-        gap = gap.max((w[1].start() - w[0].end()).norm());
-    }
+    let gap = largest_gap(chain);
     let coverage = radius * ((sweep0 - FRAC_PI_2).abs() + (sweep1 - FRAC_PI_2).abs());
     let axis_off = c0.x.abs().max(c1.x.abs());
     let detect_error = off0.max(off1).max(side_off) + gap + coverage + axis_off + poles_off;
