@@ -258,18 +258,18 @@ impl Arc {
 
 impl NearestPoint for Arc {
     fn nearest(&self, p: Point2<f64>) -> (f64, Point2<f64>) {
-        let (da, db) = ((p - self.start).norm(), (p - self.end).norm());
-        let nearer_end = if da <= db {
-            (da, self.start)
-        } else {
-            (db, self.end)
-        };
         if self.is_segment() {
             let d = self.end - self.start;
             let u = ((p - self.start).dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
             let foot = self.start + d * u;
             return ((p - foot).norm(), foot);
         }
+        let (da, db) = ((p - self.start).norm(), (p - self.end).norm());
+        let nearer_end = if da <= db {
+            (da, self.start)
+        } else {
+            (db, self.end)
+        };
         if !self.foot_on_arc(p) {
             return nearer_end;
         }
@@ -284,13 +284,10 @@ impl NearestPoint for Arc {
 
     /// Euclidean distance from `p` to the arc (the closed point set), without the foot.
     fn distance_to(&self, p: Point2<f64>) -> f64 {
-        let to_ends = (p - self.start).norm().min((p - self.end).norm());
         if self.is_segment() {
-            let d = self.end - self.start;
-            let len_sq = d.norm_squared();
-            let u = ((p - self.start).dot(&d) / len_sq).clamp(0.0, 1.0);
-            return (p - (self.start + d * u)).norm();
+            return self.nearest(p).0;
         }
+        let to_ends = (p - self.start).norm().min((p - self.end).norm());
         if !self.foot_on_arc(p) {
             return to_ends;
         }
