@@ -1,18 +1,20 @@
-//! The deepest common point of two posed solids: a point `x` inside both whose clearances
-//! `d(x, dA) + d(x, dB)` sum to as much as a local ascent finds, and the certified lower
-//! bound of the depth they give (module doc of
+//! The point of the depth's lower bound for two posed solids: a point `x` whose signed
+//! margins `s_A(x) + s_B(x)` (positive inside) sum to as much as a local ascent finds, and
+//! the certified lower bound of the depth they give (module doc of
 //! [`crate::query::penetration`]).
 //!
 //! Everything is in A's frame; `pos_ab` places B there. A probe classifies `x` against both
 //! approximating chains ([`point_in_profile_nearest`]) and returns each signed margin
-//! (positive inside) with the nearest surface point. The ascent maximises
-//! `f(x) = min(s_A(x), s_B(x))`, then the certificate `s_A + s_B`, with a few moves per step: the midpoint of the
-//! two nearest surface points (the centre of the ball touching both, exact for two
-//! spheres), a step along the weaker side's gradient (away from its nearest point), and a
-//! step along the sum of both gradients; a step that gains nothing halves the step length.
-//! A seed on a surface (the distance query's overlap point often is one) has no gradient
-//! there; when the first ascent certifies nothing it starts again from the deepest of a few
-//! points about the seed. Only the final point's evaluation matters for the certificate.
+//! (positive inside) with the nearest surface point. The ascent first maximises
+//! `f(x) = min(s_A(x), s_B(x))` (the deepest common point), then the certificate
+//! `s_A + s_B` from that point and from its two nearest surface points, with a few moves per
+//! step: the midpoint of the two nearest surface points (the centre of the ball touching
+//! both, exact for two spheres), a step along the weaker side's gradient (away from its
+//! nearest point), and a step along the sum of both gradients; a step that gains nothing
+//! halves the step length. A seed on a surface (the distance query's overlap point often is
+//! one) has no gradient there; when the first ascent certifies nothing it starts again from
+//! the deepest of a few points about the seed. Only the final point's evaluation matters for
+//! the certificate.
 
 use crate::bvh::containment::point_in_profile_nearest;
 use crate::bvh::QueryTree;
@@ -69,13 +71,29 @@ impl Probe {
     }
 
     /// The certified lower bound of the depth at `x` (module doc of
-    /// [`crate::query::penetration`]): the sum of the true clearances, each its margin less
-    /// the tree's bound (`e_a`, `e_b`) and the rounding `slack`; `None` unless both are
-    /// positive (then `x` is inside both true solids).
+    /// [`crate::query::penetration`]): the sum of the two true signed margins' certified
+    /// lower bounds ([`certified_margin`] with the tree's bound `e_a` or `e_b` and the
+    /// rounding `slack`); `None` unless the sum is positive (then `x` is inside at least one
+    /// true solid, deeper than it is outside the other).
     pub fn certified_bound(&self, e_a: f64, e_b: f64, slack: f64) -> Option<f64> {
-        let ca = self.a.signed_margin - e_a - slack;
-        let cb = self.b.signed_margin - e_b - slack;
-        (ca > 0.0 && cb > 0.0).then_some(ca + cb)
+        let sum = certified_margin(self.a.signed_margin, e_a, slack)
+            + certified_margin(self.b.signed_margin, e_b, slack);
+        (sum > 0.0).then_some(sum)
+    }
+}
+
+/// A lower bound of the true solid's signed margin at a point (positive inside) from the
+/// approximating chain's signed margin `m`, the tree's bound `e` and the rounding `slack`.
+/// A point more than `e + slack` inside the chain is inside the true solid with a clearance
+/// of at least `m - e - slack` ([`crate::bvh::containment`]: the true profile cannot pass
+/// between the point and the chain); any other point is within `|m| + e + slack` of the
+/// true surface (which lies within `e` of the chain), so its signed margin is at least
+/// minus that.
+pub fn certified_margin(m: f64, e: f64, slack: f64) -> f64 {
+    if m > e + slack {
+        m - e - slack
+    } else {
+        -(m.abs() + e + slack)
     }
 }
 
@@ -135,11 +153,11 @@ impl<'a> Pair<'a> {
         Probe { x, a, b }
     }
 
-    /// The common point with the best certificate an ascent from `seed` finds: first the
-    /// smaller margin is raised (which brings the point inside both solids, to the centre of
-    /// the largest ball touching both surfaces), then the sum of the margins (the
-    /// certificate, [`Probe::certified_bound`] with the trees' bounds `e_a`, `e_b` and the
-    /// rounding `slack`) with both kept positive. The sum is flat along the segment between
+    /// The point with the best certificate an ascent from `seed` finds: first the smaller
+    /// margin is raised (which brings the point inside both solids, to the centre of the
+    /// largest ball touching both surfaces), then the sum of the margins (the certificate,
+    /// [`Probe::certified_bound`] with the trees' bounds `e_a`, `e_b` and the rounding
+    /// `slack`) with the sum kept positive. The sum is flat along the segment between
     /// two nearest points (two balls), so a small share of the smaller clearance is added to
     /// keep the point off the surfaces. Stops when the step falls below `step_tol`.
     pub fn ascend(
@@ -178,33 +196,54 @@ impl<'a> Pair<'a> {
                 }
             }
         }
-        let second = self.climb(first.x, step_tol, |p| {
-            let ca = p.a.signed_margin - e_a - slack;
-            let cb = p.b.signed_margin - e_b - slack;
-            if ca > 0.0 && cb > 0.0 {
+        let objective = |p: &Probe| {
+            let ca = certified_margin(p.a.signed_margin, e_a, slack);
+            let cb = certified_margin(p.b.signed_margin, e_b, slack);
+            if ca + cb > 0.0 {
                 ca + cb + BALANCE_SHARE * ca.min(cb)
             } else {
                 f64::NEG_INFINITY
             }
-        });
+        };
         let bound = |p: &Probe| p.certified_bound(e_a, e_b, slack).unwrap_or(0.0);
-        if bound(&second) >= bound(&first) {
-            second
-        } else {
-            first
+        // The sum also climbs from the two nearest surface points: a surface point of one
+        // solid deep in the other certifies its depth there, and the best certificate of a
+        // corner pressed into a face lies on the face's normal through the corner, outside
+        // the corner's solid, where no ascent inside both arrives.
+        let mut best = first;
+        let reach = first.depth().abs();
+        for seed in [first.x, first.a.nearest, first.b.nearest] {
+            let climbed = self.climb_from(seed, reach, step_tol, objective);
+            if bound(&climbed) > bound(&best) {
+                best = climbed;
+            }
         }
+        best
     }
 
-    /// Pattern ascent of `objective` from `seed` with the moves of the module doc.
+    /// Pattern ascent of `objective` from `seed`, the first step as long as the seed's
+    /// smaller margin ([`Pair::climb_from`]).
     fn climb(
         &mut self,
         seed: Point3<f64>,
         step_tol: f64,
         objective: impl Fn(&Probe) -> f64,
     ) -> Probe {
+        self.climb_from(seed, 0.0, step_tol, objective)
+    }
+
+    /// Pattern ascent of `objective` from `seed` with the moves of the module doc; the first
+    /// step is the longer of `reach` and the seed's smaller margin.
+    fn climb_from(
+        &mut self,
+        seed: Point3<f64>,
+        reach: f64,
+        step_tol: f64,
+        objective: impl Fn(&Probe) -> f64,
+    ) -> Probe {
         let mut best = self.probe(seed);
         let mut value = objective(&best);
-        let mut h = best.depth().abs().max(step_tol);
+        let mut h = best.depth().abs().max(reach).max(step_tol);
         for _ in 0..MAX_STEPS {
             if h < step_tol {
                 break;

@@ -23,18 +23,34 @@
 //! shallow contact of two smooth surfaces (depth below both curvature radii) the lens's
 //! thickness, which is PD to first order.
 //!
-//! For a solid of revolution `d(x, dA)` is the planar distance from `x`'s meridian point
-//! `(hypot(x, y), z)` to the profile, in the half-plane `rho >= 0` (the distance to a point
-//! of the surface at revolution angle `theta'` is smallest at `theta' = theta(x)`). The
-//! query knows the approximating chain, within the tree's bound `e` of the true profile both
-//! ways, so a margin `m` from the chain gives a true clearance of at least `m - e`, and the
-//! classification of `x` is that of the true solid when `m > e`
-//! ([`crate::bvh::containment`]). The certified bound is
-//! `(m_A - e_A - slack) + (m_B - e_B - slack)`, both terms positive, `slack` the query's
-//! rounding budget ([`crate::query::query_slack`]), the same discipline as the overlap
-//! certificate (`query/front/overlap.rs`). The search for the point
-//! ([`deepest`]) is a local ascent: a point it finds is a certificate however it was found,
-//! and a missed better point only makes the bound weaker.
+//! **The same bound at any point: signed margins.** Let `s_A(x)` be A's signed margin,
+//! `d(x, dA)` inside A and `-d(x, A)` outside, and `s_B` likewise; both are 1-Lipschitz. At
+//! any point `x` with `s_A(x) + s_B(x) > 0`, `PD >= s_A(x) + s_B(x)`. One margin is
+//! positive, say `s_A(x) = c_A > 0`, so `U(x, c_A)` lies in A's interior. For
+//! `|t| < c_A + s_B(x)`, B's margin at `x` after the translation is
+//! `s_B(x - t) >= s_B(x) - |t| > -c_A`: either `x` is interior to `B + t`, or `B + t` has a
+//! point within `c_A` of `x`, inside `U(x, c_A)`, and being a solid (the closure of its
+//! interior) it has interior points there too; either way the interiors meet. Inside both
+//! solids this is the bound above; outside one it certifies a corner of A pressed into a
+//! face of B from the points beyond the corner on the face's normal (`s_A = -|x - corner|`,
+//! `s_B = depth + |x - corner|`), and a ball of radius `r` centred at `c` outside A from its
+//! centre (`r - d(c, A)`, the exact depth where A is convex near the contact), two
+//! certificates that need no ball inside both solids.
+//!
+//! For a solid of revolution `d(x, dA)` (and `d(x, A)` outside) is the planar distance from
+//! `x`'s meridian point `(hypot(x, y), z)` to the profile, in the half-plane `rho >= 0` (the
+//! distance to a point of the surface at revolution angle `theta'` is smallest at
+//! `theta' = theta(x)`). The query knows the approximating chain, within the tree's bound `e`
+//! of the true profile both ways, so a chain margin `m > e` (inside) gives a true clearance
+//! of at least `m - e`, the classification of `x` being that of the true solid
+//! ([`crate::bvh::containment`]), and any other point is within `|m| + e` of the true
+//! surface, a true signed margin of at least `-(|m| + e)`
+//! ([`deepest::certified_margin`], with the query's rounding budget `slack`,
+//! [`crate::query::query_slack`], added to `e`: the same discipline as the overlap
+//! certificate, `query/front/overlap.rs`). The certified bound is the sum of the two, when
+//! positive. The search for the point ([`deepest`]) is a local ascent: a point it finds is
+//! a certificate however it was found, and a missed better point only makes the bound
+//! weaker.
 //!
 //! **Upper bound: a certified separating translation.** Let the distance query certify
 //! `d(A, B + t) >= L > 0` at a translation `t`. The distance is 1-Lipschitz in B's
@@ -54,6 +70,7 @@
 //! against any solid; deep interlocked solids may leave a wide interval, whose ends remain
 //! honest. `verify penetration` checks both ends against the oracle and exact ball depths.
 
+pub mod ball_depth;
 pub mod deepest;
 pub mod separate;
 pub mod signed;

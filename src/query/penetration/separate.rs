@@ -81,7 +81,8 @@ impl<'a> Search<'a> {
         }
     }
 
-    fn best_upper(&self) -> f64 {
+    /// The best certified upper bound so far (infinite before any).
+    pub fn best_upper(&self) -> f64 {
         self.best.map_or(f64::INFINITY, |s| s.upper)
     }
 

@@ -2,6 +2,7 @@
 //! penetration depth) and [`signed_distance`] (the distance when apart, minus the depth
 //! when overlapping), with the signed distance's gradient where it is one.
 
+use super::ball_depth::detected_ball_lower;
 use super::deepest::Pair;
 use super::separate::Search;
 use crate::query::front::distance::{
@@ -22,10 +23,20 @@ const ASCENT_STEP_SHARE: f64 = 0.02;
 /// is narrow when `upper - lower <= max(2 (eps_a + eps_b), NARROW_REL * upper)`).
 pub const NARROW_REL: f64 = 0.05;
 
+/// Resolution of a ball's covering ([`super::ball_depth`]) as a share of the interval's
+/// width asked: the covering's bound then falls short of the ball's exact depth by about a
+/// quarter of the width, the trees' bounds aside.
+const BALL_RESOLUTION_SHARE: f64 = 0.25;
+
+/// Smallest resolution of a ball's covering, as a share of `eps_a + eps_b` (a width of 0
+/// asked: the covering stops at its cell budget instead).
+const BALL_RESOLUTION_FLOOR: f64 = 0.05;
+
 /// Counters of one penetration query.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct PenetrationStats {
-    /// Points classified against both solids by the deepest-point ascent.
+    /// Points classified: against both solids by the deepest-point ascent, against one by a
+    /// ball's covering.
     pub probes: usize,
     /// Distance queries, the first (at the given pose) included.
     pub distance_queries: usize,
@@ -37,15 +48,16 @@ pub struct PenetrationStats {
 /// [`crate::query::penetration`]). Points and directions are in the world frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Penetration {
-    /// Certified lower bound: the sum of the true clearances of a point inside both solids
-    /// (0 when none was certified, e.g. for solids apart or touching within the trees'
-    /// accuracy).
+    /// Certified lower bound: the sum of the true signed margins of a point (positive
+    /// inside; the point inside at least one solid), 0 when no positive sum was certified,
+    /// e.g. for solids apart or touching within the trees' accuracy.
     pub lower: f64,
     /// Certified upper bound: B moved by `s * direction`, any `s > upper`, is apart from A.
     pub upper: f64,
     /// Unit translation of B that achieves `upper` (zero when the solids are apart).
     pub direction: Vector3<f64>,
-    /// The common point whose clearances give `lower`, when there is one.
+    /// The point of `lower`'s certificate, when there is one: the point whose signed
+    /// margins give it, or the centre of the ball whose covering gives it.
     pub point: Option<Point3<f64>>,
     /// The point of B (at its pose) that touches A last along `direction`: the contact of
     /// the separating translation, used by the gradient.
@@ -138,6 +150,27 @@ fn penetration_after(
     };
     let mut search = Search::new(a, b, dist_opts, deadline, lower + width);
     search.offer_bounding_balls();
+    // A ball against any solid: the covering of the ball's ways out (`ball_depth.rs`),
+    // resolved to a quarter of the width asked, within the bounding balls' bound.
+    let resolution = (BALL_RESOLUTION_SHARE * width).max(BALL_RESOLUTION_FLOOR * eps_sum);
+    let ball = detected_ball_lower(
+        &a.tree,
+        &b.tree,
+        &pos_ab,
+        search.best_upper(),
+        resolution,
+        slack,
+    );
+    let mut point = certified.map(|_| deepest.x);
+    let mut lower = lower;
+    let mut ball_cells = 0;
+    if let Some((depth, centre)) = ball {
+        ball_cells = depth.cells;
+        if depth.lower > lower {
+            (lower, point) = (depth.lower, Some(centre));
+        }
+    }
+    search.goal = lower + width;
     // First the translation moving B's nearest surface point onto A's (exact for two
     // balls), then the margins' own gradients, then the two axes.
     let push = deepest.a.nearest - deepest.b.nearest;
@@ -162,11 +195,11 @@ fn penetration_after(
         lower,
         upper,
         direction,
-        point: certified.map(|_| a.pose * deepest.x),
+        point: point.map(|x| a.pose * x),
         contact_b: best.contact_b.map(|p| a.pose * p),
         narrow: upper - lower <= (2.0 * eps_sum).max(NARROW_REL * upper),
         stats: PenetrationStats {
-            probes: pair.probes,
+            probes: pair.probes + ball_cells,
             distance_queries: 1 + search.queries,
             budget_exhausted: search.budget_exhausted || d.stats.budget_exhausted,
         },

@@ -15,8 +15,9 @@
 //!   separating length the oracle finds along revdist's direction and along its own (the
 //!   translation moving B's nearest exact surface point onto A's at the oracle's best
 //!   common point), confirmed apart by the full oracle.
-//! * **upper vs the oracle's common point**: `upper >= c_A(x) + c_B(x)` at the best common
-//!   point the oracle finds on the exact profiles.
+//! * **upper vs the oracle's point bound**: `upper >= c_A(x) + c_B(x)` at the best point the
+//!   oracle finds on the exact profiles (signed clearances, a positive sum; inside both or
+//!   not, [`oracle::common_point_bound`]).
 //!
 //! The tolerance of every comparison is `1e-9` of the scene (`1 + |t| + sizes`): the
 //! oracle's own realised distances are within a few ulps of its exact closest points and
@@ -308,7 +309,7 @@ fn run_case(index: usize, built: &Built, opts: &Options) -> Option<Outcome> {
                 ));
             }
         }
-        // The oracle's common point: upper >= c_A + c_B.
+        // The oracle's point bound: upper >= c_A + c_B (signed clearances).
         let seeds: Vec<Point3<f64>> = p.point.into_iter().collect();
         let seeds = if seeds.is_empty() {
             vec![nalgebra::center(&sd.distance.point_a, &sd.distance.point_b)]

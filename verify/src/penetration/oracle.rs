@@ -11,8 +11,11 @@
 //!   point is marched to its first crossing (the distance is 1-Lipschitz, so a step of
 //!   `r - d` never passes it) and the best ray refined by golden section.
 //! * [`common_point_bound`]: the oracle's lower bound of PD, `c_A(x) + c_B(x)` at the best
-//!   common point it finds (random samples and a compass search), each clearance the exact
-//!   profile's distance.
+//!   point it finds (random samples and a compass search), each clearance the exact
+//!   profile's signed distance (positive inside, negative outside). A positive sum is a lower
+//!   bound wherever `x` is: inside A with clearance `c_A`, the ball `U(x, c_A)` lies in A,
+//!   and a translation `t` of B shorter than `c_A + c_B(x)` leaves B's signed distance at `x`
+//!   above `-c_A` (it is 1-Lipschitz), so B still meets that ball.
 //! * [`separating_length`]: the shortest separating translation the oracle finds along a
 //!   direction (bisection on the oracle's quick census, the final length confirmed by the
 //!   full oracle), an upper bound of PD.
@@ -81,9 +84,9 @@ pub fn ball_depth(a: &PlanarIndex, c: &Point3<f64>, r: f64, size: f64) -> f64 {
     best
 }
 
-/// The oracle's lower bound of PD: the best `c_A(x) + c_B(x)` over common points found
+/// The oracle's lower bound of PD: the best positive `c_A(x) + c_B(x)` over points found
 /// from `seeds` (A's frame) and `samples` random points in the box of half-size `reach`
-/// about the first seed, then a compass search; 0 when no common point was found.
+/// about the first seed, then a compass search; 0 when no positive sum was found.
 pub fn common_point_bound(
     a: &PlanarIndex,
     b: &PlanarIndex,
@@ -96,11 +99,7 @@ pub fn common_point_bound(
     let pos_ba = pos_ab.inverse();
     let value = |x: &Point3<f64>| {
         let (ca, cb) = (clearance(a, x), clearance(b, &(pos_ba * x)));
-        if ca > 0.0 && cb > 0.0 {
-            ca + cb
-        } else {
-            0.0
-        }
+        (ca + cb).max(0.0)
     };
     let Some(&centre) = seeds.first() else {
         return 0.0;

@@ -23,7 +23,7 @@ pub(crate) struct PenetrationJson {
     upper: f64,
     /// Unit translation of B that achieves `upper`.
     direction: [f64; 3],
-    /// The common point whose clearances give `lower` (absent when `lower` is 0).
+    /// The point whose signed margins give `lower` (absent when `lower` is 0).
     #[serde(skip_serializing_if = "Option::is_none")]
     point: Option<[f64; 3]>,
     /// `upper - lower <= max(2 (eps_A + eps_B), 5 % of upper)`: the gradient is given.
