@@ -27,8 +27,8 @@
 //! tolerance (`EPA_DEFAULT_TOLERANCE`, "the precision on the estimated distance between two
 //! geometries which are in collision") and the poses' rounding to the decimal text the program
 //! reads. A depth outside is judged by the query oracle of `verify` on the exact profiles,
-//! independent of `revdist::query`: below the interval, by the oracle's certified common point
-//! (`c_A(x) + c_B(x) <= PD`, `verify::penetration::oracle::common_point_bound`); above it, by
+//! independent of `revdist::query`: below the interval, by the oracle's certified point bound
+//! (`c_A(x) + c_B(x) <= PD`, signed clearances, `verify::penetration::oracle::common_point_bound`); above it, by
 //! the oracle's verdict that B moved by `upper` along revdist's direction is apart. A depth the
 //! oracle shows to be wrong is coal's error (counted, with its size); any other depth outside
 //! the interval is a violation (exit status 1).

@@ -105,8 +105,8 @@ pub(super) fn misses(rows: &[Row]) -> String {
     let mut s = format!(
         "{} ball or shallow cases missed the width target: {spent} with the upper bound's \
          search out of distance queries ({MAX_QUERIES}), {} with queries left (no shorter \
-         separating translation along its directions); {untouched} with no certified common \
-         point (lower 0: touching within the trees' accuracy). The worst by width / target:\n\n\
+         separating translation along its directions); {untouched} with no certified lower \
+         bound (lower 0: touching within the trees' accuracy). The worst by width / target:\n\n\
          | pair | class | eps | push / size | lower | upper | width / target | queries |\n\
          |---|---|---|---|---|---|---|---|\n",
         missed.len(),
@@ -142,7 +142,7 @@ pub(super) fn coal_table(rows: &[Row], coal_version: &str) -> String {
          pairs) on its exact primitives at the same poses; inside means `lower - tol <= coal \
          <= upper + tol`, `tol = {COAL_EPA_TOLERANCE:e} + 1e-9 scene` (coal's EPA tolerance). \
          A depth outside is judged by `verify`'s oracle on the exact profiles: *coal error* \
-         when it is below a common point's certified bound `c_A + c_B` (or above a translation \
+         when it is below a point's certified bound `c_A + c_B` (signed clearances; or above a translation \
          the oracle confirms separating); *unexplained* (a violation) otherwise.\n\n\
          | pair | eps | cases | inside | coal error | unexplained | max excess | largest coal shortfall below c_A + c_B | median (coal - lower) / width | median coal us | median revdist signed us |\n\
          |---|---|---|---|---|---|---|---|---|---|---|\n"

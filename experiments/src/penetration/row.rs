@@ -51,7 +51,7 @@ pub(super) struct Row {
     pub(super) probes: usize,
     pub(super) signed_us: f64,
     pub(super) distance_us: f64,
-    /// Unit translation of B achieving `upper`, and the common point giving `lower`.
+    /// Unit translation of B achieving `upper`, and the point of `lower`'s certificate.
     pub(super) direction: nalgebra::Vector3<f64>,
     pub(super) point: Option<nalgebra::Point3<f64>>,
     /// coal's depth (convex cases).
@@ -66,7 +66,7 @@ pub(super) struct Row {
 pub(super) enum CoalVerdict {
     /// Within `[lower - tol, upper + tol]`.
     Inside,
-    /// Below the oracle's certified common point bound (this value): coal's error.
+    /// Below the oracle's certified point bound (this value): coal's error.
     BelowCommonPoint(f64),
     /// Above a translation the oracle confirms separating: coal's error.
     AboveSeparation,

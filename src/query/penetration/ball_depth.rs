@@ -139,7 +139,7 @@ pub fn ball_depth_lower(
 ) -> BallDepth {
     let e = tree.eps;
     let r = radius - slack;
-    if !(r > e && reach > 0.0 && resolution > 0.0) || !reach.is_finite() {
+    if !(r > e && reach > 0.0 && resolution > 0.0 && reach.is_finite()) {
         return BallDepth {
             lower: 0.0,
             cells: 0,
