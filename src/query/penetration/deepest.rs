@@ -153,6 +153,28 @@ impl<'a> Pair<'a> {
         Probe { x, a, b }
     }
 
+    /// Central differences of both signed margins about `x` at spacing `h`: the margins'
+    /// gradients where `x` lies on or next to a surface, whose nearest point then gives none
+    /// ([`Side::gradient`]). Each unit length or zero.
+    pub fn margin_gradients(&mut self, x: Point3<f64>, h: f64) -> (Vector3<f64>, Vector3<f64>) {
+        let (mut ga, mut gb) = (Vector3::zeros(), Vector3::zeros());
+        for k in 0..3 {
+            let d = Vector3::ith(k, h);
+            let (p, m) = (self.probe(x + d), self.probe(x - d));
+            ga[k] = p.a.signed_margin - m.a.signed_margin;
+            gb[k] = p.b.signed_margin - m.b.signed_margin;
+        }
+        let unit = |g: Vector3<f64>| {
+            let n = g.norm();
+            if n > 0.0 && n.is_finite() {
+                g / n
+            } else {
+                Vector3::zeros()
+            }
+        };
+        (unit(ga), unit(gb))
+    }
+
     /// The point with the best certificate an ascent from `seed` finds: first the smaller
     /// margin is raised (which brings the point inside both solids, to the centre of the
     /// largest ball touching both surfaces), then the sum of the margins (the certificate,

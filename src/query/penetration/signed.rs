@@ -174,6 +174,12 @@ fn penetration_after(
     // First the translation moving B's nearest surface point onto A's (exact for two
     // balls), then the margins' own gradients, then the two axes.
     let push = deepest.a.nearest - deepest.b.nearest;
+    if certified.is_none() {
+        // Touching within the trees' accuracy: the point sits on the surfaces, where the
+        // nearest points give no direction; B away from A along the margins' differences.
+        let (ga, gb) = pair.margin_gradients(deepest.x, eps_sum.max(slack));
+        search.along(gb - ga, 0.0);
+    }
     search.along(push, push.norm());
     let (ga, gb) = (
         deepest.a.gradient(&deepest.x),
