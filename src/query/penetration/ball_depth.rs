@@ -100,7 +100,7 @@ struct ByInner(Cell);
 
 impl PartialEq for ByInner {
     fn eq(&self, other: &Self) -> bool {
-        self.0.s0 == other.0.s0
+        self.cmp(other) == Ordering::Equal
     }
 }
 impl Eq for ByInner {}
