@@ -13,8 +13,9 @@
 //! nearest point), and a step along the sum of both gradients; a step that gains nothing
 //! halves the step length. A seed on a surface (the distance query's overlap point often is
 //! one) has no gradient there; when the first ascent certifies nothing it starts again from
-//! the deepest of a few points about the seed. Only the final point's evaluation matters for
-//! the certificate.
+//! the deepest of a few points about the seed. [`Pair::certify_from`] climbs the certificate
+//! from any seeds (the entry point adds the upper bound's last contact). Only the final
+//! point's evaluation matters for the certificate.
 
 use crate::bvh::containment::point_in_profile_nearest;
 use crate::bvh::QueryTree;
@@ -218,6 +219,45 @@ impl<'a> Pair<'a> {
                 }
             }
         }
+        // The sum also climbs from the two nearest surface points: a surface point of one
+        // solid deep in the other certifies its depth there, and the best certificate of a
+        // corner pressed into a face lies on the face's normal through the corner, outside
+        // the corner's solid, where no ascent inside both arrives.
+        let reach = first.depth().abs();
+        let climbed = self
+            .certify_from(
+                &[first.x, first.a.nearest, first.b.nearest],
+                reach,
+                step_tol,
+                e_a,
+                e_b,
+                slack,
+            )
+            .expect("three seeds");
+        if climbed.certified_bound(e_a, e_b, slack).unwrap_or(0.0)
+            > first.certified_bound(e_a, e_b, slack).unwrap_or(0.0)
+        {
+            climbed
+        } else {
+            first
+        }
+    }
+
+    /// The point with the best certificate ([`Probe::certified_bound`] with the trees'
+    /// bounds `e_a`, `e_b` and the rounding `slack`) that ascents of the certified sum from
+    /// `seeds` find, the first step of each the longer of `reach` and the seed's smaller
+    /// margin. The sum is flat along the segment between two nearest points (two balls), so
+    /// a small share of the smaller clearance is added to keep the point off the surfaces.
+    /// Stops when the step falls below `step_tol`. `None` without seeds.
+    pub fn certify_from(
+        &mut self,
+        seeds: &[Point3<f64>],
+        reach: f64,
+        step_tol: f64,
+        e_a: f64,
+        e_b: f64,
+        slack: f64,
+    ) -> Option<Probe> {
         let objective = |p: &Probe| {
             let ca = certified_margin(p.a.signed_margin, e_a, slack);
             let cb = certified_margin(p.b.signed_margin, e_b, slack);
@@ -228,16 +268,11 @@ impl<'a> Pair<'a> {
             }
         };
         let bound = |p: &Probe| p.certified_bound(e_a, e_b, slack).unwrap_or(0.0);
-        // The sum also climbs from the two nearest surface points: a surface point of one
-        // solid deep in the other certifies its depth there, and the best certificate of a
-        // corner pressed into a face lies on the face's normal through the corner, outside
-        // the corner's solid, where no ascent inside both arrives.
-        let mut best = first;
-        let reach = first.depth().abs();
-        for seed in [first.x, first.a.nearest, first.b.nearest] {
+        let mut best: Option<Probe> = None;
+        for &seed in seeds {
             let climbed = self.climb_from(seed, reach, step_tol, objective);
-            if bound(&climbed) > bound(&best) {
-                best = climbed;
+            if best.is_none_or(|b| bound(&climbed) > bound(&b)) {
+                best = Some(climbed);
             }
         }
         best

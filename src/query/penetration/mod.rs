@@ -48,8 +48,11 @@
 //! ([`deepest::certified_margin`], with the query's rounding budget `slack`,
 //! [`crate::query::query_slack`], added to `e`: the same discipline as the overlap
 //! certificate, `query/front/overlap.rs`). The certified bound is the sum of the two, when
-//! positive. The search for the point ([`deepest`]) is a local ascent: a point it finds is
-//! a certificate however it was found, and a missed better point only makes the bound
+//! positive. The search for the point ([`deepest`]) is local ascents, from the distance
+//! query's overlap point and, when the interval is still wider than asked, from the upper
+//! bound's last contact (B's point there lies inside A about as deep as the separating
+//! translation is long, often in another overlap region): a point they find is a
+//! certificate however it was found, and a missed better point only makes the bound
 //! weaker.
 //!
 //! **Upper bound: a certified separating translation.** Let the distance query certify

@@ -128,13 +128,8 @@ fn penetration_after(
     // The distance's overlap point, or the middle of its witnesses when undecided.
     let seed = to_local * nalgebra::center(&d.point_a, &d.point_b);
     let mut pair = Pair::new(&a.tree, &b.tree, pos_ab);
-    let deepest = pair.ascend(
-        seed,
-        (ASCENT_STEP_SHARE * (e_a + e_b)).max(slack),
-        e_a,
-        e_b,
-        slack,
-    );
+    let step_tol = (ASCENT_STEP_SHARE * (e_a + e_b)).max(slack);
+    let deepest = pair.ascend(seed, step_tol, e_a, e_b, slack);
     let certified = deepest.certified_bound(e_a, e_b, slack);
     let lower = certified.unwrap_or(0.0);
 
@@ -190,6 +185,30 @@ fn penetration_after(
         search.along(u, lower.max(0.5 * push.norm()));
     }
     let best = search.best.expect("the bounding balls always give a bound");
+    if best.upper - lower > width {
+        // The separating translation's last contact: B's point there lies inside A about
+        // as deep as the translation is long, often in another overlap region than the
+        // distance query's point. The sum climbs from it, from the point of A it reaches
+        // and from their middle.
+        if let Some(c) = best.contact_b {
+            let t = best.translation;
+            let climbed = pair
+                .certify_from(
+                    &[c, c + 0.5 * t, c + t],
+                    0.25 * t.norm(),
+                    step_tol,
+                    e_a,
+                    e_b,
+                    slack,
+                )
+                .expect("three seeds");
+            if let Some(b) = climbed.certified_bound(e_a, e_b, slack) {
+                if b > lower {
+                    (lower, point) = (b, Some(climbed.x));
+                }
+            }
+        }
+    }
     let upper = best.upper.max(lower);
     let len = best.translation.norm();
     let direction = if len > 0.0 {

@@ -18,6 +18,10 @@ pub struct PenetrationArgs {
     /// Run the oracle's separation and common-point checks on every N-th case.
     #[arg(long, default_value_t = 1)]
     oracle_every: usize,
+    /// Run only these case indices (comma separated, seeded as in the full campaign),
+    /// instead of `0..count`.
+    #[arg(long, value_delimiter = ',')]
+    cases: Vec<usize>,
     #[arg(long, default_value = "target/verify-penetration")]
     out: std::path::PathBuf,
 }
@@ -30,6 +34,7 @@ impl PenetrationArgs {
             eps,
             threads,
             oracle_every,
+            cases,
             out,
         } = self;
         require_positive_eps(&eps);
@@ -40,6 +45,7 @@ impl PenetrationArgs {
             threads,
             out,
             oracle_every,
+            cases,
         };
         match verify::penetration::run(&opts) {
             Ok(s) if s.violations == 0 => {}

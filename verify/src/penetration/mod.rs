@@ -48,6 +48,9 @@ pub struct Options {
     /// Run the oracle's separation and common-point checks on every `oracle_every`-th
     /// case (they cost tens of milliseconds); the exact and self checks run on all.
     pub oracle_every: usize,
+    /// Run only these case indices (each seeded as in the full campaign) instead of
+    /// `0..count`: reproduces chosen cases of a campaign.
+    pub cases: Vec<usize>,
 }
 
 /// What kind of case.
@@ -395,7 +398,15 @@ pub fn run(opts: &Options) -> std::io::Result<Summary> {
         for _ in 0..threads {
             scope.spawn(|| loop {
                 let k = next.fetch_add(1, Ordering::Relaxed);
-                if k >= opts.count {
+                let k = if opts.cases.is_empty() {
+                    k
+                } else {
+                    match opts.cases.get(k) {
+                        Some(&index) => index,
+                        None => break,
+                    }
+                };
+                if k >= opts.count && opts.cases.is_empty() {
                     break;
                 }
                 if let Some(o) = run_case(k, &built, opts) {
