@@ -50,3 +50,33 @@ mod tests {
         assert_eq!(norm2(f64::INFINITY, 1.0), f64::INFINITY);
     }
 }
+
+/// A heap entry that [`std::collections::BinaryHeap`] pops smallest `key` first, and among
+/// equal keys smallest `tie` first (both ordered by [`f64::total_cmp`]; equality from the
+/// same order).
+#[derive(Debug, Clone, Copy)]
+pub struct SmallestFirst<T> {
+    pub key: f64,
+    pub tie: f64,
+    pub item: T,
+}
+
+impl<T> PartialEq for SmallestFirst<T> {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == std::cmp::Ordering::Equal
+    }
+}
+impl<T> Eq for SmallestFirst<T> {}
+impl<T> PartialOrd for SmallestFirst<T> {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl<T> Ord for SmallestFirst<T> {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        other
+            .key
+            .total_cmp(&self.key)
+            .then(other.tie.total_cmp(&self.tie))
+    }
+}

@@ -50,6 +50,8 @@ pub use front::distance::{
 };
 pub use front::gradient::Gradient;
 pub use front::width::{width_limit, WidthLimit};
-pub use penetration::{penetration, signed_distance, Penetration, SignedDistance};
+pub use penetration::{
+    penetration, signed_distance, LowerCertificate, Penetration, SignedDistance,
+};
 pub use search::kernel::{patch_distance, PatchDistance};
 pub use search::Budget;

@@ -32,8 +32,8 @@
 use crate::bvh::containment::point_in_profile_capped;
 use crate::bvh::offset_solid::{Core, OffsetSolid};
 use crate::bvh::QueryTree;
+use crate::num::SmallestFirst;
 use nalgebra::{Isometry3, Point2, Point3};
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 
@@ -95,23 +95,12 @@ impl Cell {
     }
 }
 
-/// Heap order: the smallest inner radius first.
-struct ByInner(Cell);
-
-impl PartialEq for ByInner {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for ByInner {}
-impl PartialOrd for ByInner {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for ByInner {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.0.s0.total_cmp(&self.0.s0)
+/// Heap entry: cells are taken by increasing inner radius.
+fn by_inner(cell: Cell) -> SmallestFirst<Cell> {
+    SmallestFirst {
+        key: cell.s0,
+        tie: 0.0,
+        item: cell,
     }
 }
 
@@ -160,7 +149,7 @@ pub fn ball_depth_lower(
     let mut limit = reach;
     let mut heap = BinaryHeap::new();
     for k in 0..SECTORS {
-        heap.push(ByInner(Cell {
+        heap.push(by_inner(Cell {
             s0: 0.0,
             s1: reach,
             phi0: TAU * k as f64 / SECTORS as f64,
@@ -168,7 +157,7 @@ pub fn ball_depth_lower(
         }));
     }
     let mut cells = 0;
-    while let Some(ByInner(mut cell)) = heap.pop() {
+    while let Some(SmallestFirst { item: mut cell, .. }) = heap.pop() {
         if cell.s0 >= limit {
             break;
         }
@@ -190,7 +179,7 @@ pub fn ball_depth_lower(
             continue;
         }
         for half in cell.split() {
-            heap.push(ByInner(half));
+            heap.push(by_inner(half));
         }
     }
     BallDepth {

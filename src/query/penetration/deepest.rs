@@ -232,6 +232,7 @@ impl<'a> Pair<'a> {
                 e_a,
                 e_b,
                 slack,
+                f64::INFINITY,
             )
             .expect("three seeds");
         if climbed.certified_bound(e_a, e_b, slack).unwrap_or(0.0)
@@ -248,7 +249,9 @@ impl<'a> Pair<'a> {
     /// `seeds` find, the first step of each the longer of `reach` and the seed's smaller
     /// margin. The sum is flat along the segment between two nearest points (two balls), so
     /// a small share of the smaller clearance is added to keep the point off the surfaces.
-    /// Stops when the step falls below `step_tol`. `None` without seeds.
+    /// Stops when the step falls below `step_tol`, or as soon as a certificate exceeds
+    /// `enough` (infinite: never). `None` without seeds.
+    #[allow(clippy::too_many_arguments)]
     pub fn certify_from(
         &mut self,
         seeds: &[Point3<f64>],
@@ -257,6 +260,7 @@ impl<'a> Pair<'a> {
         e_a: f64,
         e_b: f64,
         slack: f64,
+        enough: f64,
     ) -> Option<Probe> {
         let objective = |p: &Probe| {
             let ca = certified_margin(p.a.signed_margin, e_a, slack);
@@ -268,11 +272,15 @@ impl<'a> Pair<'a> {
             }
         };
         let bound = |p: &Probe| p.certified_bound(e_a, e_b, slack).unwrap_or(0.0);
+        let done = |p: &Probe| bound(p) > enough;
         let mut best: Option<Probe> = None;
         for &seed in seeds {
-            let climbed = self.climb_from(seed, reach, step_tol, objective);
+            let climbed = self.climb_from(seed, reach, step_tol, objective, done);
             if best.is_none_or(|b| bound(&climbed) > bound(&b)) {
                 best = Some(climbed);
+            }
+            if best.as_ref().is_some_and(done) {
+                break;
             }
         }
         best
@@ -286,23 +294,25 @@ impl<'a> Pair<'a> {
         step_tol: f64,
         objective: impl Fn(&Probe) -> f64,
     ) -> Probe {
-        self.climb_from(seed, 0.0, step_tol, objective)
+        self.climb_from(seed, 0.0, step_tol, objective, |_| false)
     }
 
     /// Pattern ascent of `objective` from `seed` with the moves of the module doc; the first
-    /// step is the longer of `reach` and the seed's smaller margin.
+    /// step is the longer of `reach` and the seed's smaller margin. Stops early at a point
+    /// that is `done`.
     fn climb_from(
         &mut self,
         seed: Point3<f64>,
         reach: f64,
         step_tol: f64,
         objective: impl Fn(&Probe) -> f64,
+        done: impl Fn(&Probe) -> bool,
     ) -> Probe {
         let mut best = self.probe(seed);
         let mut value = objective(&best);
         let mut h = best.depth().abs().max(reach).max(step_tol);
         for _ in 0..MAX_STEPS {
-            if h < step_tol {
+            if h < step_tol || done(&best) {
                 break;
             }
             let x = best.x;

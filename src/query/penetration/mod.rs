@@ -55,6 +55,16 @@
 //! certificate however it was found, and a missed better point only makes the bound
 //! weaker.
 //!
+//! **Several contact regions: a covering of translations.** `PD >= L` as soon as every
+//! translation `t` with `|t| < L` leaves the solids overlapping, and a point `x` whose
+//! signed margins at the pose `B + t0` sum to `sigma > 0` certifies every `t` within
+//! `sigma` of `t0` (B's margin at `x` is 1-Lipschitz in B's translation). The bound above is
+//! the ball of radius `s_A + s_B` about `t0 = 0`. Where a bump sits in a groove, touching
+//! both walls, each way out is blocked by another region and the depth exceeds any one
+//! point's sum; [`translation_cover`] covers the ball of translations by such balls (cells
+//! of directions times radii, each certified at its centre), which reaches it. It runs when
+//! the interval is still not narrow after the point's and the upper bound's searches.
+//!
 //! **Upper bound: a certified separating translation.** Let the distance query certify
 //! `d(A, B + t) >= L > 0` at a translation `t`. The distance is 1-Lipschitz in B's
 //! translation, so `d(A, B + t - v) >= L - |v| > 0` for `|v| < L`: every such translation
@@ -77,8 +87,11 @@ pub mod ball_depth;
 pub mod deepest;
 pub mod separate;
 pub mod signed;
+pub mod translation_cover;
 
 #[cfg(test)]
 mod tests;
 
-pub use signed::{penetration, signed_distance, Penetration, PenetrationStats, SignedDistance};
+pub use signed::{
+    penetration, signed_distance, LowerCertificate, Penetration, PenetrationStats, SignedDistance,
+};

@@ -5,6 +5,7 @@
 use super::ball_depth::detected_ball_lower;
 use super::deepest::Pair;
 use super::separate::Search;
+use super::translation_cover::{translation_cover_lower, CoverSpec};
 use crate::query::front::distance::{
     check_query, distance, query_slack, Distance, QueryError, QueryOptions, Tolerance,
 };
@@ -32,16 +33,41 @@ const BALL_RESOLUTION_SHARE: f64 = 0.25;
 /// asked: the covering stops at its cell budget instead).
 const BALL_RESOLUTION_FLOOR: f64 = 0.05;
 
+/// Share of the width asked below the upper bound that the covering of translations
+/// certifies (a little inside the width, so that the interval meets it after rounding).
+const COVER_GOAL_SHARE: f64 = 0.9;
+
 /// Counters of one penetration query.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct PenetrationStats {
     /// Points classified: against both solids by the deepest-point ascent, against one by a
     /// ball's covering.
     pub probes: usize,
+    /// Cells of the covering of translations ([`super::translation_cover`]), 0 when the
+    /// interval met the width asked without it.
+    pub cover_cells: usize,
     /// Distance queries, the first (at the given pose) included.
     pub distance_queries: usize,
     /// The time budget ran out before the interval met the requested width.
     pub budget_exhausted: bool,
+}
+
+/// The certificate of a penetration depth's lower bound (module doc of
+/// [`crate::query::penetration`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LowerCertificate {
+    /// No positive lower bound was certified (`lower` is 0).
+    None,
+    /// The signed margins of `point` ([`super::deepest`]).
+    Point,
+    /// The covering of a detected ball's ways out, the ball centred at `point`
+    /// ([`super::ball_depth`]).
+    BallCovering,
+    /// The covering of the translations shorter than `lower` by Lipschitz balls of
+    /// several points' margins ([`super::translation_cover`]); `point`'s own certificate
+    /// is the ball about no translation.
+    TranslationCovering,
 }
 
 /// The certified interval of the penetration depth (module doc of
@@ -57,8 +83,11 @@ pub struct Penetration {
     /// Unit translation of B that achieves `upper` (zero when the solids are apart).
     pub direction: Vector3<f64>,
     /// The point of `lower`'s certificate, when there is one: the point whose signed
-    /// margins give it, or the centre of the ball whose covering gives it.
+    /// margins give it, or the centre of the ball whose covering gives it (when a covering
+    /// of translations raised `lower`, the point of its ball about no translation).
     pub point: Option<Point3<f64>>,
+    /// Which certificate gives `lower`.
+    pub certificate: LowerCertificate,
     /// The point of B (at its pose) that touches A last along `direction`: the contact of
     /// the separating translation, used by the gradient.
     pub contact_b: Option<Point3<f64>>,
@@ -157,12 +186,18 @@ fn penetration_after(
         slack,
     );
     let mut point = certified.map(|_| deepest.x);
+    let mut certificate = if certified.is_some() {
+        LowerCertificate::Point
+    } else {
+        LowerCertificate::None
+    };
     let mut lower = lower;
     let mut ball_cells = 0;
     if let Some((depth, centre)) = ball {
         ball_cells = depth.cells;
         if depth.lower > lower {
             (lower, point) = (depth.lower, Some(centre));
+            certificate = LowerCertificate::BallCovering;
         }
     }
     search.goal = lower + width;
@@ -185,6 +220,7 @@ fn penetration_after(
         search.along(u, lower.max(0.5 * push.norm()));
     }
     let best = search.best.expect("the bounding balls always give a bound");
+    let mut anchors: Vec<Point3<f64>> = point.into_iter().collect();
     if best.upper - lower > width {
         // The separating translation's last contact: B's point there lies inside A about
         // as deep as the translation is long, often in another overlap region than the
@@ -200,13 +236,43 @@ fn penetration_after(
                     e_a,
                     e_b,
                     slack,
+                    f64::INFINITY,
                 )
                 .expect("three seeds");
             if let Some(b) = climbed.certified_bound(e_a, e_b, slack) {
+                anchors.push(climbed.x);
                 if b > lower {
                     (lower, point) = (b, Some(climbed.x));
+                    certificate = LowerCertificate::Point;
                 }
             }
+        }
+    }
+    let mut cover_cells = 0;
+    if best.upper - lower > width.max(NARROW_REL * best.upper) && !anchors.is_empty() {
+        // Not narrow: several contact regions, each blocking some of the ways out. A
+        // covering of the translations shorter than the upper bound by the sums' Lipschitz
+        // balls (`translation_cover.rs`), within COVER_GOAL_SHARE of the width asked.
+        let covered = translation_cover_lower(
+            &a.tree,
+            &b.tree,
+            &pos_ab,
+            &CoverSpec {
+                from: lower,
+                goal: best.upper - COVER_GOAL_SHARE * width,
+                // Resolved to a quarter of the narrow width (module doc of `translation_cover`:
+                // the cells needed grow as the square of depth over resolution).
+                resolution: resolution.max(BALL_RESOLUTION_SHARE * NARROW_REL * best.upper),
+                anchors: &anchors,
+                step_tol,
+                deadline,
+            },
+        );
+        cover_cells = covered.cells;
+        pair.probes += covered.probes;
+        if covered.lower > lower {
+            lower = covered.lower;
+            certificate = LowerCertificate::TranslationCovering;
         }
     }
     let upper = best.upper.max(lower);
@@ -221,10 +287,12 @@ fn penetration_after(
         upper,
         direction,
         point: point.map(|x| a.pose * x),
+        certificate,
         contact_b: best.contact_b.map(|p| a.pose * p),
         narrow: upper - lower <= (2.0 * eps_sum).max(NARROW_REL * upper),
         stats: PenetrationStats {
             probes: pair.probes + ball_cells,
+            cover_cells,
             distance_queries: 1 + search.queries,
             budget_exhausted: search.budget_exhausted || d.stats.budget_exhausted,
         },
@@ -238,6 +306,7 @@ fn apart() -> Penetration {
         upper: 0.0,
         direction: Vector3::zeros(),
         point: None,
+        certificate: LowerCertificate::None,
         contact_b: None,
         narrow: true,
         stats: PenetrationStats {

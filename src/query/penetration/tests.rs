@@ -288,10 +288,18 @@ fn certificates_hold_on_models() {
         if let Some(x) = p.point {
             overlapping += 1;
             let sum = recheck_certificate(&a, &b, &x);
+            // A point's certificate gives `lower` itself; a covering of translations starts
+            // from it (the ball about no translation) and certifies more.
+            let certified = match p.certificate {
+                LowerCertificate::Point => p.lower,
+                LowerCertificate::TranslationCovering => 0.0,
+                other => panic!("case {k}: {other:?} between models"),
+            };
             assert!(
-                0.0 < sum && p.lower <= sum,
-                "case {k}: lower {} above the re-checked certificate {sum}",
-                p.lower
+                0.0 < sum && certified <= sum,
+                "case {k}: lower {} ({:?}) above the re-checked certificate {sum}",
+                p.lower,
+                p.certificate
             );
         }
         let moved = b.with_pose(Isometry3::from_parts(
@@ -346,4 +354,46 @@ fn an_overlap_point_on_a_surface_still_gives_a_certificate() {
         p.lower,
         p.upper
     );
+}
+
+/// The covering of translations alone, on the ball in the torus's hole (see
+/// [`ball_in_the_hole_of_a_torus`]): started from one point's bound `r - 0.3` (the ball's
+/// centre), it must reach the exact depth `sqrt((r + 0.6)^2 - 0.81)` within its resolution
+/// and the trees' bounds, and never pass it; with a goal below the depth it must certify
+/// the goal itself.
+#[test]
+fn translation_covering_reaches_the_depth_of_a_ball_in_a_hole() {
+    use super::translation_cover::{translation_cover_lower, CoverSpec};
+    for (r, eps) in [(0.4, 1e-3), (0.6, 1e-4)] {
+        let ring = named("ring", eps);
+        let b = ball(r, eps);
+        let pos_ab = Isometry3::from_parts(
+            Translation3::new(0.0, 0.0, 0.6),
+            UnitQuaternion::from_euler_angles(0.3, -0.2, 0.1),
+        );
+        let exact = ((r + 0.6_f64).powi(2) - 0.81).sqrt();
+        let from = r - 0.3 - 2.0 * eps;
+        let resolution = 2e-3;
+        let centre = [nalgebra::Point3::new(0.0, 0.0, 0.6)];
+        let spec = |goal: f64| CoverSpec {
+            from,
+            goal,
+            resolution,
+            anchors: &centre,
+            step_tol: 1e-6,
+            deadline: None,
+        };
+        let past = translation_cover_lower(&ring.tree, &b.tree, &pos_ab, &spec(exact + 0.05));
+        assert!(past.lower <= exact, "r {r}: {past:?} above exact {exact}");
+        assert!(
+            past.lower >= exact - 2.0 * resolution - 4.0 * eps,
+            "r {r}: {past:?} far below exact {exact} (from {from})"
+        );
+        let short = translation_cover_lower(&ring.tree, &b.tree, &pos_ab, &spec(exact - 0.02));
+        assert!(
+            (short.lower - (exact - 0.02)).abs() < 1e-9,
+            "r {r}: {short:?} short of the goal {}",
+            exact - 0.02
+        );
+    }
 }

@@ -86,6 +86,8 @@ pub struct Outcome {
     pub lower: f64,
     pub upper: f64,
     pub exact: Option<f64>,
+    /// Which certificate gave `lower` (empty when not overlapping).
+    pub certificate: String,
     pub oracle_lower: Option<f64>,
     pub oracle_upper: Option<f64>,
     pub time_signed_us: f64,
@@ -263,6 +265,7 @@ fn run_case(index: usize, built: &Built, opts: &Options) -> Option<Outcome> {
         lower: sd.lower,
         upper: sd.upper,
         exact: None,
+        certificate: String::new(),
         oracle_lower: None,
         oracle_upper: None,
         time_signed_us,
@@ -280,6 +283,10 @@ fn run_case(index: usize, built: &Built, opts: &Options) -> Option<Outcome> {
         return Some(out);
     };
     (out.lower, out.upper) = (p.lower, p.upper);
+    out.certificate = serde_json::to_value(p.certificate)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default();
     if p.lower.is_nan() || p.upper.is_nan() || p.lower > p.upper {
         out.violations
             .push(format!("depth interval [{}, {}] empty", p.lower, p.upper));
@@ -418,11 +425,11 @@ pub fn run(opts: &Options) -> std::io::Result<Summary> {
     let mut results = results.into_inner().unwrap();
     results.sort_by_key(|o| o.index);
     std::fs::create_dir_all(&opts.out)?;
-    let mut csv = String::from("index,kind,a,b,eps,push,overlap,lower,upper,exact,oracle_lower,oracle_upper,size,time_signed_us,time_distance_us,violations\n");
+    let mut csv = String::from("index,kind,a,b,eps,push,overlap,lower,upper,exact,certificate,oracle_lower,oracle_upper,size,time_signed_us,time_distance_us,violations\n");
     let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:e}"));
     for o in &results {
         csv += &format!(
-            "{},{},{},{},{:e},{:e},{},{:e},{:e},{},{},{},{:e},{:.1},{:.1},\"{}\"\n",
+            "{},{},{},{},{:e},{:e},{},{:e},{:e},{},{},{},{},{:e},{:.1},{:.1},\"{}\"\n",
             o.index,
             o.kind.name(),
             o.a,
@@ -433,6 +440,7 @@ pub fn run(opts: &Options) -> std::io::Result<Summary> {
             o.lower,
             o.upper,
             opt(o.exact),
+            o.certificate,
             opt(o.oracle_lower),
             opt(o.oracle_upper),
             o.size,
@@ -493,6 +501,11 @@ pub fn run(opts: &Options) -> std::io::Result<Summary> {
             median(ratios),
         );
     }
+    let mut by_certificate = std::collections::BTreeMap::<&str, usize>::new();
+    for o in results.iter().filter(|o| o.overlap) {
+        *by_certificate.entry(o.certificate.as_str()).or_default() += 1;
+    }
+    text += &format!("lower bound by: {by_certificate:?}\n");
     text += &format!(
         "cases {}  overlapping {}  oracle-checked {}  violations {}\n",
         summary.cases, summary.overlapping, summary.oracle_checked, summary.violations

@@ -2,7 +2,7 @@
 //! interval ([`revdist::query::penetration`]) in the JSON and text answers.
 
 use nalgebra::{Point3, Vector3};
-use revdist::query::{Penetration, SignedDistance};
+use revdist::query::{LowerCertificate, Penetration, SignedDistance};
 use serde::Serialize;
 
 use super::{GradientJson, Output};
@@ -26,6 +26,9 @@ pub(crate) struct PenetrationJson {
     /// The point whose signed margins give `lower` (absent when `lower` is 0).
     #[serde(skip_serializing_if = "Option::is_none")]
     point: Option<[f64; 3]>,
+    /// Which certificate gives `lower`: `none`, `point`, `ball_covering` or
+    /// `translation_covering`.
+    certificate: LowerCertificate,
     /// `upper - lower <= max(2 (eps_A + eps_B), 5 % of upper)`: the gradient is given.
     narrow: bool,
     /// Points classified by the deepest-point search.
@@ -46,6 +49,7 @@ impl From<&Penetration> for PenetrationJson {
             upper: p.upper,
             direction: array(&p.direction),
             point: p.point.map(|x| array(&x.coords)),
+            certificate: p.certificate,
             narrow: p.narrow,
             probes: p.stats.probes,
             distance_queries: p.stats.distance_queries,
@@ -82,6 +86,7 @@ pub(crate) fn print_text(s: &SignedDistance) {
         if let Some(x) = p.point {
             println!("deepest   {:.9} {:.9} {:.9}", x.x, x.y, x.z);
         }
+        println!("lower by  {:?}", p.certificate);
         println!(
             "search    {} probes, {} distance queries{}",
             p.stats.probes,
