@@ -56,6 +56,15 @@ impl Side {
     }
 }
 
+/// What the chains' signed margins may be off by: the trees' bounds `e_a`, `e_b` and the
+/// pose's rounding `slack` ([`certified_margin`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Allowance {
+    pub e_a: f64,
+    pub e_b: f64,
+    pub slack: f64,
+}
+
 /// A point classified against both solids.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Probe {
@@ -73,13 +82,18 @@ impl Probe {
 
     /// The certified lower bound of the depth at `x` (module doc of
     /// [`crate::query::penetration`]): the sum of the two true signed margins' certified
-    /// lower bounds ([`certified_margin`] with the tree's bound `e_a` or `e_b` and the
-    /// rounding `slack`); `None` unless the sum is positive (then `x` is inside at least one
-    /// true solid, deeper than it is outside the other).
-    pub fn certified_bound(&self, e_a: f64, e_b: f64, slack: f64) -> Option<f64> {
-        let sum = certified_margin(self.a.signed_margin, e_a, slack)
-            + certified_margin(self.b.signed_margin, e_b, slack);
+    /// lower bounds ([`certified_margin`] with the tree's bound and the rounding of `w`);
+    /// `None` unless the sum is positive (then `x` is inside at least one true solid, deeper
+    /// than it is outside the other).
+    pub fn certified_bound(&self, w: &Allowance) -> Option<f64> {
+        let sum = certified_margin(self.a.signed_margin, w.e_a, w.slack)
+            + certified_margin(self.b.signed_margin, w.e_b, w.slack);
         (sum > 0.0).then_some(sum)
+    }
+
+    /// [`Probe::certified_bound`], 0 when there is none.
+    pub fn bound(&self, w: &Allowance) -> f64 {
+        self.certified_bound(w).unwrap_or(0.0)
     }
 }
 
@@ -179,20 +193,13 @@ impl<'a> Pair<'a> {
     /// The point with the best certificate an ascent from `seed` finds: first the smaller
     /// margin is raised (which brings the point inside both solids, to the centre of the
     /// largest ball touching both surfaces), then the sum of the margins (the certificate,
-    /// [`Probe::certified_bound`] with the trees' bounds `e_a`, `e_b` and the rounding
-    /// `slack`) with the sum kept positive. The sum is flat along the segment between
-    /// two nearest points (two balls), so a small share of the smaller clearance is added to
-    /// keep the point off the surfaces. Stops when the step falls below `step_tol`.
-    pub fn ascend(
-        &mut self,
-        seed: Point3<f64>,
-        step_tol: f64,
-        e_a: f64,
-        e_b: f64,
-        slack: f64,
-    ) -> Probe {
+    /// [`Probe::certified_bound`] with the allowance `w`) with the sum kept
+    /// positive. The sum is flat along the segment between two nearest points (two balls),
+    /// so a small share of the smaller clearance is added to keep the point off the
+    /// surfaces. Stops when the step falls below `step_tol`.
+    pub fn ascend(&mut self, seed: Point3<f64>, step_tol: f64, w: &Allowance) -> Probe {
         let mut first = self.climb(seed, step_tol, Probe::depth);
-        if first.certified_bound(e_a, e_b, slack).is_none() {
+        if first.certified_bound(w).is_none() {
             // A seed on a surface (the distance query's overlap point often is one) has no
             // gradient there: start again from the deepest of a few points about it.
             let scale = self.scale();
@@ -224,54 +231,42 @@ impl<'a> Pair<'a> {
         // corner pressed into a face lies on the face's normal through the corner, outside
         // the corner's solid, where no ascent inside both arrives.
         let reach = first.depth().abs();
+        let seeds = [first.x, first.a.nearest, first.b.nearest];
         let climbed = self
-            .certify_from(
-                &[first.x, first.a.nearest, first.b.nearest],
-                reach,
-                step_tol,
-                e_a,
-                e_b,
-                slack,
-                f64::INFINITY,
-            )
+            .certify_from(&seeds, reach, step_tol, w, f64::INFINITY)
             .expect("three seeds");
-        if climbed.certified_bound(e_a, e_b, slack).unwrap_or(0.0)
-            > first.certified_bound(e_a, e_b, slack).unwrap_or(0.0)
-        {
+        if climbed.bound(w) > first.bound(w) {
             climbed
         } else {
             first
         }
     }
 
-    /// The point with the best certificate ([`Probe::certified_bound`] with the trees'
-    /// bounds `e_a`, `e_b` and the rounding `slack`) that ascents of the certified sum from
+    /// The point with the best certificate ([`Probe::certified_bound`] with the allowance
+    /// `w`) that ascents of the certified sum from
     /// `seeds` find, the first step of each the longer of `reach` and the seed's smaller
     /// margin. The sum is flat along the segment between two nearest points (two balls), so
     /// a small share of the smaller clearance is added to keep the point off the surfaces.
     /// Stops when the step falls below `step_tol`, or as soon as a certificate exceeds
     /// `enough` (infinite: never). `None` without seeds.
-    #[allow(clippy::too_many_arguments)]
     pub fn certify_from(
         &mut self,
         seeds: &[Point3<f64>],
         reach: f64,
         step_tol: f64,
-        e_a: f64,
-        e_b: f64,
-        slack: f64,
+        w: &Allowance,
         enough: f64,
     ) -> Option<Probe> {
         let objective = |p: &Probe| {
-            let ca = certified_margin(p.a.signed_margin, e_a, slack);
-            let cb = certified_margin(p.b.signed_margin, e_b, slack);
+            let ca = certified_margin(p.a.signed_margin, w.e_a, w.slack);
+            let cb = certified_margin(p.b.signed_margin, w.e_b, w.slack);
             if ca + cb > 0.0 {
                 ca + cb + BALANCE_SHARE * ca.min(cb)
             } else {
                 f64::NEG_INFINITY
             }
         };
-        let bound = |p: &Probe| p.certified_bound(e_a, e_b, slack).unwrap_or(0.0);
+        let bound = |p: &Probe| p.bound(w);
         let done = |p: &Probe| bound(p) > enough;
         let mut best: Option<Probe> = None;
         for &seed in seeds {

@@ -3,7 +3,7 @@
 //! when overlapping), with the signed distance's gradient where it is one.
 
 use super::ball_depth::detected_ball_lower;
-use super::deepest::Pair;
+use super::deepest::{Allowance, Pair};
 use super::separate::Search;
 use super::translation_cover::{translation_cover_lower, CoverSpec};
 use crate::query::front::distance::{
@@ -158,8 +158,9 @@ fn penetration_after(
     let seed = to_local * nalgebra::center(&d.point_a, &d.point_b);
     let mut pair = Pair::new(&a.tree, &b.tree, pos_ab);
     let step_tol = (ASCENT_STEP_SHARE * (e_a + e_b)).max(slack);
-    let deepest = pair.ascend(seed, step_tol, e_a, e_b, slack);
-    let certified = deepest.certified_bound(e_a, e_b, slack);
+    let allowance = Allowance { e_a, e_b, slack };
+    let deepest = pair.ascend(seed, step_tol, &allowance);
+    let certified = deepest.certified_bound(&allowance);
     let lower = certified.unwrap_or(0.0);
 
     let width = match opts.tolerance {
@@ -228,18 +229,11 @@ fn penetration_after(
         // and from their middle.
         if let Some(c) = best.contact_b {
             let t = best.translation;
+            let seeds = [c, c + 0.5 * t, c + t];
             let climbed = pair
-                .certify_from(
-                    &[c, c + 0.5 * t, c + t],
-                    0.25 * t.norm(),
-                    step_tol,
-                    e_a,
-                    e_b,
-                    slack,
-                    f64::INFINITY,
-                )
+                .certify_from(&seeds, 0.25 * t.norm(), step_tol, &allowance, f64::INFINITY)
                 .expect("three seeds");
-            if let Some(b) = climbed.certified_bound(e_a, e_b, slack) {
+            if let Some(b) = climbed.certified_bound(&allowance) {
                 anchors.push(climbed.x);
                 if b > lower {
                     (lower, point) = (b, Some(climbed.x));

@@ -25,7 +25,7 @@
 //! query's rounding slack at the moved pose and the rounding of the cell's own geometry
 //! added.
 
-use super::deepest::{Pair, Probe};
+use super::deepest::{Allowance, Pair, Probe};
 use crate::bvh::QueryTree;
 use crate::num::SmallestFirst;
 use crate::query::front::distance::query_slack;
@@ -198,7 +198,6 @@ pub fn translation_cover_lower(
     if !usable {
         return out;
     }
-    let (e_a, e_b) = (ta.eps, tb.eps);
     let rounding = CELL_ROUNDING_REL * (1.0 + pos_ab.translation.vector.norm() + spec.goal);
     let mut limit = spec.goal;
     let mut heap = BinaryHeap::new();
@@ -237,10 +236,14 @@ pub fn translation_cover_lower(
         // The translation as the two floating-point poses realise it.
         let realised = moved.translation.vector - pos_ab.translation.vector;
         let need = reach + (realised - t).norm() + rounding;
-        let slack = query_slack(ta, tb, &moved);
+        let w = Allowance {
+            e_a: ta.eps,
+            e_b: tb.eps,
+            slack: query_slack(ta, tb, &moved),
+        };
         let mut pair = Pair::new(ta, tb, moved);
         let step_tol = spec.step_tol.max(CELL_STEP_SHARE * reach);
-        let covers = |p: &Probe| p.certified_bound(e_a, e_b, slack).unwrap_or(0.0) > need;
+        let covers = |p: &Probe| p.bound(&w) > need;
         // The parent's point first, moved by half the change of translation (the lens of a
         // shallow overlap follows B by about half its motion), then the anchors likewise.
         let mut seeds: Vec<Point3<f64>> = Vec::with_capacity(1 + spec.anchors.len());
@@ -253,17 +256,16 @@ pub fn translation_cover_lower(
                 return false;
             }
             let climbed = pair
-                .certify_from(seeds, 0.5 * reach, step_tol, e_a, e_b, slack, need)
+                .certify_from(seeds, 0.5 * reach, step_tol, &w, need)
                 .expect("seeds given");
-            let bound = |p: &Probe| p.certified_bound(e_a, e_b, slack).unwrap_or(0.0);
-            if best.is_none_or(|b| bound(&climbed) > bound(&b)) {
+            if best.is_none_or(|b| climbed.bound(&w) > b.bound(&w)) {
                 *best = Some(climbed);
             }
             covers(&climbed)
         };
         let mut certified = try_seeds(&mut pair, &seeds, &mut best);
         // The anchors when the parent's region certifies nothing here (it separated).
-        let hint_lost = best.is_none_or(|p| p.certified_bound(e_a, e_b, slack).is_none());
+        let hint_lost = best.is_none_or(|p| p.certified_bound(&w).is_none());
         if !certified && hint_lost {
             seeds.clear();
             seeds.extend(spec.anchors.iter().map(|x| x + 0.5 * t));
@@ -278,7 +280,7 @@ pub fn translation_cover_lower(
             continue;
         }
         let hint = best
-            .filter(|p| p.certified_bound(e_a, e_b, slack).is_some())
+            .filter(|p| p.certified_bound(&w).is_some())
             .map(|p| (p.x, t))
             .or(cell.hint);
         for child in cell.split(hint) {
