@@ -1,6 +1,6 @@
 //! The minimum distance of two circles (paper section 3.2): general pairs take the certified
-//! fast path of [`super::certified`]; axes that meet take a closed form; the rest descend the
-//! closed-form distance along B ([`super::descent`]) from every root and root cluster of the
+//! fast path of `super::certified`; axes that meet take a closed form; the rest descend the
+//! closed-form distance along B (`super::descent`) from every root and root cluster of the
 //! binormal polynomial ([`super::binormal`]), with each circle parametrised in turn.
 
 use super::binormal::{

@@ -23,7 +23,7 @@
 //! what it decides and what it may call; no path calls another, and none calls the front
 //! door.
 //!
-//! Above the distance, [`penetration`] bounds the translational penetration depth and the
+//! Above the distance, [`penetration()`] bounds the translational penetration depth and the
 //! signed distance of overlapping solids; it calls the front door's entry points and the
 //! containment tests of [`crate::bvh`], nothing of the paths.
 //!

@@ -50,7 +50,7 @@ use crate::solid::Solid;
 /// Relative shortening of each advancement step: the step `(l - D) / L` is computed with
 /// three roundings (subtraction, division, the product with this factor), each at most a
 /// unit roundoff `1.1e-16` relative; `1e-12` covers them with a wide margin. The sum
-/// `t + step` is then moved down by two ulps ([`below`]) to cover its own rounding.
+/// `t + step` is then moved down by two ulps (`below`) to cover its own rounding.
 pub const STEP_SHRINK_REL: f64 = 1e-12;
 
 /// The advancement tries the carried contact certificate ([`super::contact`]) once, as soon

@@ -22,8 +22,8 @@
 //! one query at a time on one thread; coal times each query inside its own process. Every
 //! answer is cross-checked against revdist's certified interval: a mesh distance must lie in
 //! it widened by the meshes' Hausdorff bounds h_a + h_b, coal's exact primitives within it
-//! widened by coal's GJK error bound ([`COAL_GJK_TOLERANCE`]); parry3d's exact primitives, which
-//! state no tolerance, are reported with their largest excess ([`PARRY_GROSS_EXCESS`] fails).
+//! widened by coal's GJK error bound (`COAL_GJK_TOLERANCE`); parry3d's exact primitives, which
+//! state no tolerance, are reported with their largest excess (`PARRY_GROSS_EXCESS` fails).
 //! A violation fails the run (exit status 1, after writing the outputs).
 //!
 //! Without coal (scripts/deps.sh installs it) coal's columns say so and the rest runs.

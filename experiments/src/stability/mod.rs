@@ -14,7 +14,7 @@
 //! `+-delta`, all in exact rationals (directions are rational points of the unit sphere, the
 //! tilt a rational quaternion); the pair is then moved by a random rational rigid motion
 //! (translation up to 10 per coordinate). The double-precision solver
-//! ([`revdist::circle::min_distance`]) sees the rounded data; the reference is the exact
+//! ([`mod@revdist::circle::min_distance`]) sees the rounded data; the reference is the exact
 //! minimum distance of the rational data from the degree-8 polynomial in exact rationals
 //! (Sturm isolation, MPFR refinement to ~1e-70: [`verify::circles::run_case`]), or the
 //! catalogue's analytic value for the continua at `delta = 0`.

@@ -3,7 +3,7 @@
 //!
 //! **Queries.** `--poses N` (default 2,000) seeded queries over the 16 built-in models
 //! ([`revdist::models::model_names`], exact and freeform `*_ff`, and the frame
-//! [`MORPH_FRAME`] of the deformable model M_t), each with
+//! `MORPH_FRAME` of the deformable model M_t), each with
 //!
 //! * eps drawn from {1e-4, 1e-5, 1e-6, 1e-7} (`--eps` replaces the set);
 //! * tolerance 0 on a tenth of the queries (drawn), the default tolerance
@@ -27,7 +27,7 @@
 //!     distance 0.
 //!
 //! Gaps are placed by bisection on the distance between the boundary surfaces with trees of
-//! eps [`PLACE_EPS`] and a width of 1% of the gap, accepted within 5%; so `gap` is the
+//! eps `PLACE_EPS` and a width of 1% of the gap, accepted within 5%; so `gap` is the
 //! distance of the exact solids to a few percent. Placement runs on all cores, before any
 //! timing; trees are built once per (model, eps), also before any timing.
 //!

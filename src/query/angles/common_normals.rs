@@ -10,7 +10,7 @@
 //!   connecting vector lies in the meridian plane, so it is orthogonal to `M`'s tangent, and
 //!   criticality makes it orthogonal to `G`'s tangent. Between consecutive critical angles
 //!   both distances are monotone, so crossings of the torus surface are bracketed by them.
-//! * Circle against circle: [`crate::circle::min_distance`].
+//! * Circle against circle: [`mod@crate::circle::min_distance`].
 //!
 //! Each function reports `false` (or `Err`) for configurations with a continuum of
 //! binormals or a zero-length binormal, where the caller falls back to the sampled

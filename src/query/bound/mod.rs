@@ -1,7 +1,7 @@
 //! Lower bounds between bounding volumes: the solid tori of disks, bounding spheres,
 //! spherical shells, height slabs ([`node_pair`], paper section 4.2), convex hulls of
 //! parallels ([`mod@hull_bound`], iterated on their Minkowski difference, with the simplex step
-//! of [`crate::query::simplex`]) and the support functions of patch sectors ([`sector`]).
+//! of `crate::query::simplex`) and the support functions of patch sectors ([`sector`]).
 //!
 //! **What this level decides.** A valid lower bound for everything inside two volumes,
 //! whatever they hold: the traversal uses them as node keys, the leaf stages for pieces and

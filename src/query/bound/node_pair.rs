@@ -11,7 +11,7 @@
 //! points on `M_A`, `M_B`: `|x - y| >= |m_x - m_y| - |x - m_x| - |y - m_y| >=
 //! dist(M_A, M_B) - s_A - s_B`. So `dist(T_A, T_B) >= dist(M_A, M_B) - s_A - s_B`, a lower
 //! bound for everything in the two nodes. The circle/circle distance comes from the circle
-//! module ([`crate::circle::min_distance`]), verified against exact arithmetic.
+//! module ([`mod@crate::circle::min_distance`]), verified against exact arithmetic.
 //!
 //! Cheaper, looser bounds: the bounding sphere of `T` (centre `(0, 0, c_z)`, radius
 //! `c_rho + s`) gives sphere/sphere and sphere/torus bounds (point-to-circle distance in

@@ -14,7 +14,7 @@
 //! two sectors for every unit `w`, exact for the convex hulls when `w` is the direction of
 //! their closest points.
 //!
-//! **Why sectors.** The bounds of revolved pieces ([`super::node_pair`], [`super::hull_bound`])
+//! **Why sectors.** The bounds of revolved pieces ([`super::node_pair`], [`mod@super::hull_bound`])
 //! revolve every sub-piece a full turn, so their error shrinks at best with the square of
 //! the profile length but never with the angle: a piece that wraps around the other solid (a
 //! ring about a neck) keeps them useless however fine the profile is cut. A sector's hull

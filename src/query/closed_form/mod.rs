@@ -8,7 +8,7 @@
 //! a circle coaxial with it, so the distance between two such solids is the distance between
 //! their cores minus both radii, clamped at 0 (balls of radius `r` about every core point;
 //! the Minkowski argument). This needs one point/point, point/circle or circle/circle
-//! distance ([`crate::circle::min_distance`]) instead of a traversal. A capsule (a quarter
+//! distance ([`mod@crate::circle::min_distance`]) instead of a traversal. A capsule (a quarter
 //! circle, a side parallel to the axis, a quarter circle) is the offset of a segment of the
 //! axis: its distances to a ball's or a capsule's core are those of segments, with a
 //! separating slab for the lower bound (`segments.rs`).

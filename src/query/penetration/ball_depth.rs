@@ -1,6 +1,6 @@
 //! A certified lower bound of a ball's translational depth in a solid of revolution, by
 //! covering a disk of the solid's meridian plane (module doc of
-//! [`crate::query::penetration`]).
+//! [`mod@crate::query::penetration`]).
 //!
 //! **Statement.** Let the open ball `U(c, r)` lie inside the true solid B, and let A be a
 //! solid of revolution. Translating B by `t` leaves A and `B + t` overlapping whenever

@@ -1,7 +1,7 @@
 //! The point of the depth's lower bound for two posed solids: a point `x` whose signed
 //! margins `s_A(x) + s_B(x)` (positive inside) sum to as much as a local ascent finds, and
 //! the certified lower bound of the depth they give (module doc of
-//! [`crate::query::penetration`]).
+//! [`mod@crate::query::penetration`]).
 //!
 //! Everything is in A's frame; `pos_ab` places B there. A probe classifies `x` against both
 //! approximating chains ([`point_in_profile_nearest`]) and returns each signed margin
@@ -81,7 +81,7 @@ impl Probe {
     }
 
     /// The certified lower bound of the depth at `x` (module doc of
-    /// [`crate::query::penetration`]): the sum of the two true signed margins' certified
+    /// [`mod@crate::query::penetration`]): the sum of the two true signed margins' certified
     /// lower bounds ([`certified_margin`] with the tree's bound and the rounding of `w`);
     /// `None` unless the sum is positive (then `x` is inside at least one true solid, deeper
     /// than it is outside the other).

@@ -1,5 +1,5 @@
 //! Upper bounds of the penetration depth: translations of B that a certified distance query
-//! finds separated (module doc of [`crate::query::penetration`]: a query answering
+//! finds separated (module doc of [`mod@crate::query::penetration`]: a query answering
 //! `d(A, B + t) >= L > 0` gives `PD <= |t| - L`).
 //!
 //! The search works in A's frame. Along a direction `u` it queries `B + t` at

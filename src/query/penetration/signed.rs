@@ -53,7 +53,7 @@ pub struct PenetrationStats {
 }
 
 /// The certificate of a penetration depth's lower bound (module doc of
-/// [`crate::query::penetration`]).
+/// [`mod@crate::query::penetration`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LowerCertificate {
@@ -71,7 +71,7 @@ pub enum LowerCertificate {
 }
 
 /// The certified interval of the penetration depth (module doc of
-/// [`crate::query::penetration`]). Points and directions are in the world frame.
+/// [`mod@crate::query::penetration`]). Points and directions are in the world frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Penetration {
     /// Certified lower bound: the sum of the true signed margins of a point (positive
@@ -311,7 +311,7 @@ fn apart() -> Penetration {
 }
 
 /// Certified interval of the translational penetration depth of two posed solids
-/// (module doc of [`crate::query::penetration`]): `lower <= PD <= upper`.
+/// (module doc of [`mod@crate::query::penetration`]): `lower <= PD <= upper`.
 ///
 /// `opts.tolerance` asks for `upper - lower` (the default, [`Tolerance::Trees`], for
 /// `2 (eps_a + eps_b)`; the lower bound alone loses up to twice the larger leaf bound);

@@ -44,7 +44,7 @@ fn target(a: &Solid, b: &Solid, pd: f64) -> f64 {
 /// The lower bound's certificate re-checked from the outside: `x` classified against both
 /// trees by `point_in_solid`, each true signed margin bounded below by its chain margin less
 /// the tree's bound (inside by more than the bound), or minus the margin plus the bound
-/// (anywhere else); their sum (module doc of [`crate::query::penetration`]).
+/// (anywhere else); their sum (module doc of [`mod@crate::query::penetration`]).
 fn recheck_certificate(a: &Solid, b: &Solid, x: &nalgebra::Point3<f64>) -> f64 {
     let margin = |s: &Solid| {
         let c = point_in_solid(&s.tree, &(s.pose.inverse() * x));

@@ -1,5 +1,5 @@
 //! A certified lower bound of the penetration depth by covering a ball of B's translations
-//! (module doc of [`crate::query::penetration`]).
+//! (module doc of [`mod@crate::query::penetration`]).
 //!
 //! **Statement.** `PD(A, B) >= L` when every translation `t` with `|t| < L` leaves A and
 //! `B + t` overlapping. A point `x` whose certified signed margins against A and `B + t0`

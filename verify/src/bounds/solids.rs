@@ -11,7 +11,7 @@
 //! circles and segments, as [`ProfileArc`] chains; [`super::nearest`], [`super::exact`]),
 //! so `lower <= reference + allowance` must hold whatever the pose; overlapping solids must
 //! answer `lower <= 0`, which the same inequality checks. The allowance is the rounding of
-//! the NURBS control points of the exact circles, [`PROFILE_ROUNDING`] of the scale, and
+//! the NURBS control points of the exact circles, `PROFILE_ROUNDING` of the scale, and
 //! nothing else.
 
 use super::chain::{lift_vector, planar_normal, point, Pair, SurfacePoint};

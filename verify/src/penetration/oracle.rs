@@ -183,7 +183,7 @@ pub fn apart_at(
 }
 
 /// The shortest separating length the oracle finds along the unit direction `u`, starting
-/// from `s_hi` (grown until apart): bisection on [`apart_quick`], the result confirmed by
+/// from `s_hi` (grown until apart): bisection on `apart_quick`, the result confirmed by
 /// [`apart_full`]. `None` when nothing was confirmed.
 pub fn separating_length(
     a: &PlanarIndex,

@@ -24,7 +24,7 @@ pub enum PoseKind {
     NestedNear,
     Coincident,
     /// A corner circle of A against a corner, an axis end or a smooth point of B
-    /// ([`super::corners`]).
+    /// (`super::corners`).
     Corner,
 }
 

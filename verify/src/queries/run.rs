@@ -34,7 +34,7 @@ pub struct CampaignOptions {
     pub regressions: bool,
     /// Failures printed in full.
     pub print_failures: usize,
-    /// Draw every solid from the balls, capsules and solid tori ([`PRIMITIVE_PREFIX`] shapes,
+    /// Draw every solid from the balls, capsules and solid tori (`PRIMITIVE_PREFIX` shapes,
     /// `ring`, `sphere`, `capsule`), whose queries take the closed form of
     /// `revdist::query::closed_form` (a capsule against a solid torus the traversal).
     pub primitives: bool,

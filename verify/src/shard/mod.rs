@@ -95,7 +95,7 @@ pub fn parse_shard(text: &str) -> Result<Shard, String> {
 #[derive(clap::Args, Debug, Clone, Default)]
 pub struct Flags {
     /// Run only shard I of N (0 <= I < N): a fixed 1/N of the work units, with the seeds of
-    /// an unsharded run; writes the raw rows to DIR/<name>.rows.csv (tables and figures come
+    /// an unsharded run; writes the raw rows to `DIR/<name>.rows.csv` (tables and figures come
     /// from --merge)
     #[arg(long, value_name = "I/N", value_parser = parse_shard, conflicts_with = "merge",
           allow_hyphen_values = true)]

@@ -1,7 +1,7 @@
 //! The oracle's check of one time-of-impact answer, sharing no code with the query or with
 //! `revdist::toi`: its own interpolation of the motion (nalgebra's slerp on the shortest
 //! arc, linear translation) and `verify`'s independent surface distance
-//! ([`crate::oracle::surface_distance`]).
+//! ([`mod@crate::oracle::surface_distance`]).
 //!
 //! * Before `t_lower`: at every sampled time (uniform on `[0, t_lower)` and accumulating
 //!   towards `t_lower`; `[0, 1]` for "apart") the oracle's realised upper estimate (the

@@ -95,7 +95,7 @@ pub struct Report {
     pub times: BTreeMap<(&'static str, u64), Vec<Duration>>,
     /// Thread CPU time of the oracle's checks (all threads).
     pub oracle_time: Duration,
-    /// The [`SLOWEST`] slowest searches: time, and the case as [`describe`] writes it.
+    /// The [`SLOWEST`] slowest searches: time, and the case as `describe` writes it.
     pub slowest: Vec<(Duration, String)>,
     pub wall: Duration,
     /// Building the trees and oracle indexes (part of `wall`).

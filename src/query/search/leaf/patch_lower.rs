@@ -13,7 +13,7 @@
 //! toroidal patches is `l - r1 - r2`, `l` a binormal length). Any patch pair also has the
 //! solid-torus bound of the disks around its pieces; the larger of the two is returned.
 //!
-//! Cost: one circle/circle minimum ([`crate::circle::min_distance`], under 1 us for circles
+//! Cost: one circle/circle minimum ([`mod@crate::circle::min_distance`], under 1 us for circles
 //! in general position) and a few planar closest-point evaluations.
 
 use crate::bvh::hull::PieceHull;
@@ -377,7 +377,7 @@ fn arc_cone(a: &Patch, b: &Patch, pos_ab: &Isometry3<f64>) -> Option<ArcTori> {
 /// the squared equations include both mirror branches and the circle's passages through
 /// the axis, a superset);
 /// or an end point, whose distance along the circle is bounded below by the circle/circle
-/// minimum to that end's parallel ([`crate::circle::min_distance`]). The minimum over
+/// minimum to that end's parallel ([`mod@crate::circle::min_distance`]). The minimum over
 /// these candidates, keeping only interior candidates whose foot lies on the segment, is
 /// the distance (each candidate is a realised value, and every local minimum is covered).
 pub(super) fn circle_segment_distance(

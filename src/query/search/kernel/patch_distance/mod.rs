@@ -40,7 +40,7 @@
 //! Interior intersection loops that touch no boundary are found by the crossing scan (d),
 //! which samples every interior candidate's meridian at the candidate itself; a loop the
 //! scan misses encloses a *lens* whose extremum is an interior candidate at a local maximum
-//! of the distance along its patch, and such a candidate ([`second_order`]) makes the
+//! of the distance along its patch, and such a candidate (`second_order`) makes the
 //! answer `sampled` (docs/verification.md, "Crossing lenses"). The interior pairs are also
 //! reported through [`PatchDistance::interior_pairs`]: at the deepest point of a loop the
 //! common normal may have both points inside the other solid, which the caller (who knows
