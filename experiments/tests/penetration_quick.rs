@@ -57,6 +57,22 @@ fn penetration_slice_runs_and_writes_its_outputs() {
     assert!(dir.join("penetration.svg").exists());
 }
 
+#[test]
+fn zero_poses_fail_with_a_message() {
+    let dir = std::env::temp_dir().join(format!("revdist-penetration-bad-{}", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_penetration"))
+        .args(["--poses", "0", "--out"])
+        .arg(&dir)
+        .output()
+        .expect("penetration runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("'--poses <N>': needs a positive integer"),
+        "{err}"
+    );
+}
+
 /// B at translation `t` (A at the identity), no rotation.
 fn at(x: f64, y: f64, z: f64) -> Isometry3<f64> {
     Isometry3::from_parts(Translation3::new(x, y, z), UnitQuaternion::identity())

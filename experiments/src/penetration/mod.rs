@@ -71,7 +71,7 @@ const COAL_EPA_TOLERANCE: f64 = 1e-6;
 #[command(about = "Penetration depth: interval width vs depth and eps, time, coal's EPA")]
 pub struct Args {
     /// Poses per pair, eps and depth level [default: 2; --paper: 20, and eps 1e-5 too]
-    #[arg(long)]
+    #[arg(long, value_name = "N", value_parser = crate::args::positive_count)]
     poses: Option<usize>,
     /// Poses per convex pair and eps checked against coal's EPA [default: 6; --paper: 100]
     #[arg(long)]
