@@ -83,7 +83,7 @@ fn run(cmd: &str, args: &[&str]) -> Option<String> {
 }
 
 /// `HEAD`'s hash, with `-dirty` when the work tree has uncommitted changes to tracked files.
-fn git_commit() -> String {
+pub fn git_commit() -> String {
     let Some(head) = run("git", &["rev-parse", "--short=12", "HEAD"]) else {
         return "unknown (not a git checkout)".into();
     };
@@ -99,7 +99,8 @@ fn utc_now() -> String {
     run("date", &["-u", "+%Y-%m-%dT%H:%M:%SZ"]).unwrap_or_else(|| "unknown".into())
 }
 
-fn cpu_model() -> String {
+/// The CPU's model name from `/proc/cpuinfo` (`unknown` elsewhere).
+pub fn cpu_model() -> String {
     std::fs::read_to_string("/proc/cpuinfo")
         .ok()
         .and_then(|s| {

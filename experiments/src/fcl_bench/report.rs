@@ -117,28 +117,10 @@ fn layouts_table() -> Table<'static, Row> {
         .right()
 }
 
+/// The CPU and its cores, as the report's header names the machine.
 fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split_once(':'))
-                .map(|(_, v)| v.trim().to_owned())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    format!("{cpu}, {cores} cores")
-}
-
-fn git_commit() -> String {
-    std::process::Command::new("git")
-        .args(["rev-parse", "HEAD"])
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
-        .unwrap_or_else(|| "unknown".into())
+    format!("{}, {cores} cores", crate::provenance::cpu_model())
 }
 
 /// `poses`: per pair at eps >= 5e-5 and below.
@@ -151,7 +133,7 @@ pub(super) fn markdown(rows: &[Row], poses: (usize, usize), wall: Duration) -> S
          at eps 1e-3 and 1e-4 only, unless --paper; the `poses` column tells), gaps \
          log-uniform in [{:e}, {:e}], seeded; wall time {:.0} s.\n",
         machine(),
-        git_commit(),
+        crate::provenance::git_commit(),
         poses.0,
         poses.1,
         GAPS.0,
