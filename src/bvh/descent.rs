@@ -87,15 +87,9 @@ impl<P: NearestPoint> DiskVisitor for NearestVisitor<'_, P> {
         }
     }
 
-    /// Nearer child first (as [`QueryTree::children_nearer_first`], by squared distances).
+    /// Nearer child first.
     fn order(&self, tree: &QueryTree, id: u32) -> [u32; 2] {
-        let [c0, c1] = tree.nodes[id as usize].children;
-        let dist2 = |k: u32| (self.m - tree.nodes[k as usize].bound.center).norm_squared();
-        if dist2(c0) <= dist2(c1) {
-            [c0, c1]
-        } else {
-            [c1, c0]
-        }
+        tree.children_nearer_first(id, self.m)
     }
 }
 

@@ -378,8 +378,9 @@ impl QueryTree {
     /// distance so far visits the likelier side first.
     pub fn children_nearer_first(&self, n: u32, m: Point2<f64>) -> [u32; 2] {
         let [c0, c1] = self.nodes[n as usize].children;
-        let dist = |k: u32| (m - self.nodes[k as usize].bound.center).norm();
-        if dist(c0) <= dist(c1) {
+        // Squared distances: the same order without the square roots.
+        let dist2 = |k: u32| (m - self.nodes[k as usize].bound.center).norm_squared();
+        if dist2(c0) <= dist2(c1) {
             [c0, c1]
         } else {
             [c1, c0]
