@@ -86,9 +86,17 @@ impl Probe {
     /// `None` unless the sum is positive (then `x` is inside at least one true solid, deeper
     /// than it is outside the other).
     pub fn certified_bound(&self, w: &Allowance) -> Option<f64> {
-        let sum = certified_margin(self.a.signed_margin, w.e_a, w.slack)
-            + certified_margin(self.b.signed_margin, w.e_b, w.slack);
+        let (ca, cb) = self.certified_margins(w);
+        let sum = ca + cb;
         (sum > 0.0).then_some(sum)
+    }
+
+    /// The two true signed margins' certified lower bounds ([`certified_margin`]).
+    pub fn certified_margins(&self, w: &Allowance) -> (f64, f64) {
+        (
+            certified_margin(self.a.signed_margin, w.e_a, w.slack),
+            certified_margin(self.b.signed_margin, w.e_b, w.slack),
+        )
     }
 
     /// [`Probe::certified_bound`], 0 when there is none.
@@ -243,9 +251,8 @@ impl<'a> Pair<'a> {
     }
 
     /// The point with the best certificate ([`Probe::certified_bound`] with the allowance
-    /// `w`) that ascents of the certified sum from
-    /// `seeds` find, the first step of each the longer of `reach` and the seed's smaller
-    /// margin. The sum is flat along the segment between two nearest points (two balls), so
+    /// `w`) that ascents of the certified sum from `seeds` find, the first step of each the
+    /// longer of `reach` and the seed's smaller margin. The sum is flat along the segment between two nearest points (two balls), so
     /// a small share of the smaller clearance is added to keep the point off the surfaces.
     /// Stops when the step falls below `step_tol`, or as soon as a certificate exceeds
     /// `enough` (infinite: never). `None` without seeds.
@@ -258,8 +265,7 @@ impl<'a> Pair<'a> {
         enough: f64,
     ) -> Option<Probe> {
         let objective = |p: &Probe| {
-            let ca = certified_margin(p.a.signed_margin, w.e_a, w.slack);
-            let cb = certified_margin(p.b.signed_margin, w.e_b, w.slack);
+            let (ca, cb) = p.certified_margins(w);
             if ca + cb > 0.0 {
                 ca + cb + BALANCE_SHARE * ca.min(cb)
             } else {

@@ -405,18 +405,13 @@ pub fn run(opts: &Options) -> std::io::Result<Summary> {
         for _ in 0..threads {
             scope.spawn(|| loop {
                 let k = next.fetch_add(1, Ordering::Relaxed);
-                let k = if opts.cases.is_empty() {
-                    k
+                let index = if opts.cases.is_empty() {
+                    (k < opts.count).then_some(k)
                 } else {
-                    match opts.cases.get(k) {
-                        Some(&index) => index,
-                        None => break,
-                    }
+                    opts.cases.get(k).copied()
                 };
-                if k >= opts.count && opts.cases.is_empty() {
-                    break;
-                }
-                if let Some(o) = run_case(k, &built, opts) {
+                let Some(index) = index else { break };
+                if let Some(o) = run_case(index, &built, opts) {
                     results.lock().unwrap().push(o);
                 }
             });
