@@ -43,6 +43,16 @@ fn penetration_slice_runs_and_writes_its_outputs() {
         let f: Vec<&str> = r.split(',').collect();
         let (lower, upper): (f64, f64) = (f[6].parse().unwrap(), f[7].parse().unwrap());
         assert!(lower.is_nan() || (0.0 <= lower && lower <= upper), "{r}");
+        // cover_cells, then the lower bound's certificate (empty when certified apart).
+        let cells: usize = f[13].parse().unwrap();
+        let kinds = ["none", "point", "ball_covering", "translation_covering"];
+        if lower.is_nan() {
+            assert!(f[14].is_empty() && cells == 0, "{r}");
+        } else {
+            assert!(kinds.contains(&f[14]), "{r}");
+            assert_eq!(f[14] == "none", lower == 0.0, "{r}");
+            assert!(f[14] != "translation_covering" || cells > 0, "{r}");
+        }
     }
     if rows.len() > models {
         assert!(

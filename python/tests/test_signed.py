@@ -163,6 +163,12 @@ def test_signed_is_the_cli(cli):
                 assert bits(r.pd_upper[i]) == bits(p["upper"]), (a, b, i)
                 assert np.array_equal(bits(r.pd_direction[i]), bits(p["direction"]))
                 assert r.pd_lower[i] <= r.pd_upper[i]
+                # The lower bound's certificate: none exactly when nothing positive is.
+                kinds = ("none", "point", "ball_covering", "translation_covering")
+                assert p["certificate"] in kinds, p
+                assert (p["certificate"] == "none") == (p["lower"] == 0.0), p
+                covered = p["certificate"] == "translation_covering"
+                assert p["cover_cells"] >= 0 and (not covered or p["cover_cells"] > 0), p
             g = x.get("gradient")
             if g is None:
                 assert np.isnan(r.gradient_translation[i]).all(), (a, b, i)

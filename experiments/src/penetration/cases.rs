@@ -54,6 +54,8 @@ fn case(a: &Named, b: &Named, class: Class, eps: f64, level: f64, rng: &mut Spli
         Some(p) => (p.lower, p.upper, p.stats.distance_queries, p.stats.probes),
         None => (f64::NAN, f64::NAN, 1, 0),
     };
+    let cover_cells = s.penetration.as_ref().map_or(0, |p| p.stats.cover_cells);
+    let certificate = s.penetration.as_ref().map(|p| p.certificate);
     let (direction, point) = s
         .penetration
         .as_ref()
@@ -77,6 +79,8 @@ fn case(a: &Named, b: &Named, class: Class, eps: f64, level: f64, rng: &mut Spli
         upper,
         queries,
         probes,
+        cover_cells,
+        certificate,
         signed_us,
         distance_us,
         direction,

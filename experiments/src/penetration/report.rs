@@ -8,13 +8,13 @@ use std::fmt::Write as _;
 
 pub(super) fn csv(rows: &[Row], preamble: String) -> String {
     let mut s = preamble;
-    s += "pair,class,eps,level,push,size,lower,upper,width,target,met,distance_queries,probes,signed_us,distance_us,coal_depth,coal_us,coal_verdict,tx,ty,tz,qw,qx,qy,qz\n";
+    s += "pair,class,eps,level,push,size,lower,upper,width,target,met,distance_queries,probes,cover_cells,certificate,signed_us,distance_us,coal_depth,coal_us,coal_verdict,tx,ty,tz,qw,qx,qy,qz\n";
     let opt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:.17e}"));
     for r in rows {
         let (t, q) = (r.pose.translation.vector, r.pose.rotation.quaternion());
         let _ = writeln!(
             s,
-            "{},{},{:e},{:e},{:.17e},{:.6e},{:.17e},{:.17e},{:.6e},{:.6e},{},{},{},{:.1},{:.1},{},{},{},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
+            "{},{},{:e},{:e},{:.17e},{:.6e},{:.17e},{:.17e},{:.6e},{:.6e},{},{},{},{},{},{:.1},{:.1},{},{},{},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
             r.pair,
             r.class.name(),
             r.eps,
@@ -28,6 +28,8 @@ pub(super) fn csv(rows: &[Row], preamble: String) -> String {
             r.met(),
             r.queries,
             r.probes,
+            r.cover_cells,
+            r.certificate_name(),
             r.signed_us,
             r.distance_us,
             opt(r.coal_depth),
@@ -107,8 +109,8 @@ pub(super) fn misses(rows: &[Row]) -> String {
          search out of distance queries ({MAX_QUERIES}), {} with queries left (no shorter \
          separating translation along its directions); {untouched} with no certified lower \
          bound (lower 0: touching within the trees' accuracy). The worst by width / target:\n\n\
-         | pair | class | eps | push / size | lower | upper | width / target | queries |\n\
-         |---|---|---|---|---|---|---|---|\n",
+         | pair | class | eps | push / size | lower | upper | width / target | queries | lower by |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
         missed.len(),
         missed.len() - spent,
     );
@@ -117,7 +119,7 @@ pub(super) fn misses(rows: &[Row]) -> String {
     for r in worst.iter().take(8) {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.0e} | {:.0e} | {:.6e} | {:.6e} | {:.2} | {} |",
+            "| {} | {} | {:.0e} | {:.0e} | {:.6e} | {:.6e} | {:.2} | {} | {} |",
             r.pair,
             r.class.name(),
             r.eps,
@@ -125,7 +127,8 @@ pub(super) fn misses(rows: &[Row]) -> String {
             r.lower,
             r.upper,
             r.width() / r.target(),
-            r.queries
+            r.queries,
+            r.certificate_name()
         );
     }
     s

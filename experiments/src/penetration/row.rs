@@ -3,6 +3,7 @@
 
 use super::{COAL_EPA_TOLERANCE, TARGET_REL};
 use nalgebra::Isometry3;
+use revdist::query::penetration::LowerCertificate;
 use revdist::rng::SplitMix64;
 use verify::oracle::PlanarIndex;
 use verify::penetration::oracle::{apart_at, common_point_bound};
@@ -49,6 +50,10 @@ pub(super) struct Row {
     pub(super) upper: f64,
     pub(super) queries: usize,
     pub(super) probes: usize,
+    /// Cells of the covering of translations (0 when it did not run).
+    pub(super) cover_cells: usize,
+    /// What certifies `lower` (`None` when the solids were certified apart).
+    pub(super) certificate: Option<LowerCertificate>,
     pub(super) signed_us: f64,
     pub(super) distance_us: f64,
     /// Unit translation of B achieving `upper`, and the point of `lower`'s certificate.
@@ -86,6 +91,16 @@ impl Row {
     }
     pub(super) fn answered(&self) -> bool {
         self.lower.is_finite()
+    }
+    /// The name of `lower`'s certificate, as the CLI's JSON spells it (empty when apart).
+    pub(super) fn certificate_name(&self) -> &'static str {
+        match self.certificate {
+            None => "",
+            Some(LowerCertificate::None) => "none",
+            Some(LowerCertificate::Point) => "point",
+            Some(LowerCertificate::BallCovering) => "ball_covering",
+            Some(LowerCertificate::TranslationCovering) => "translation_covering",
+        }
     }
     pub(super) fn coal_tolerance(&self) -> f64 {
         let scene = 1.0 + self.pose.translation.vector.norm() + 2.0 * self.size;

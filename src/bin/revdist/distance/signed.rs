@@ -33,6 +33,8 @@ pub(crate) struct PenetrationJson {
     narrow: bool,
     /// Points classified by the deepest-point search.
     probes: usize,
+    /// Cells of the covering of B's translations (0 when the interval was narrow without it).
+    cover_cells: usize,
     /// Distance queries spent, the first at the given pose included.
     distance_queries: usize,
     budget_exhausted: bool,
@@ -52,6 +54,7 @@ impl From<&Penetration> for PenetrationJson {
             certificate: p.certificate,
             narrow: p.narrow,
             probes: p.stats.probes,
+            cover_cells: p.stats.cover_cells,
             distance_queries: p.stats.distance_queries,
             budget_exhausted: p.stats.budget_exhausted,
         }
@@ -88,8 +91,9 @@ pub(crate) fn print_text(s: &SignedDistance) {
         }
         println!("lower by  {:?}", p.certificate);
         println!(
-            "search    {} probes, {} distance queries{}",
+            "search    {} probes, {} cover cells, {} distance queries{}",
             p.stats.probes,
+            p.stats.cover_cells,
             p.stats.distance_queries,
             if p.stats.budget_exhausted {
                 " (budget exhausted)"
