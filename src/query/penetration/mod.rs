@@ -87,6 +87,7 @@ pub mod ball_depth;
 pub mod deepest;
 pub mod separate;
 pub mod signed;
+mod stages;
 pub mod translation_cover;
 
 #[cfg(test)]

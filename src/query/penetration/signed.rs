@@ -2,40 +2,16 @@
 //! penetration depth) and [`signed_distance`] (the distance when apart, minus the depth
 //! when overlapping), with the signed distance's gradient where it is one.
 
-use super::ball_depth::detected_ball_lower;
-use super::deepest::{Allowance, Pair};
-use super::separate::Search;
-use super::translation_cover::{translation_cover_lower, CoverSpec};
-use crate::query::front::distance::{
-    check_query, distance, query_slack, Distance, QueryError, QueryOptions, Tolerance,
-};
+use super::stages::penetration_after;
+use crate::query::front::distance::{check_query, distance, Distance, QueryError, QueryOptions};
 use crate::query::front::gradient::Gradient;
-use crate::query::search::Budget;
 use crate::solid::Solid;
 use nalgebra::{Point3, Vector3};
 use std::time::Instant;
 
-/// Share of the trees' eps below which the deepest-point ascent stops refining: the lower
-/// bound `2 rho` is then within a few percent of the trees' own error `2 e` of what the
-/// local maximum gives.
-const ASCENT_STEP_SHARE: f64 = 0.02;
-
 /// Depth relative to which an interval counts as narrow for the gradient (the interval
 /// is narrow when `upper - lower <= max(2 (eps_a + eps_b), NARROW_REL * upper)`).
 pub const NARROW_REL: f64 = 0.05;
-
-/// Resolution of a ball's covering ([`super::ball_depth`]) as a share of the interval's
-/// width asked: the covering's bound then falls short of the ball's exact depth by about a
-/// quarter of the width, the trees' bounds aside.
-const BALL_RESOLUTION_SHARE: f64 = 0.25;
-
-/// Smallest resolution of a ball's covering, as a share of `eps_a + eps_b` (a width of 0
-/// asked: the covering stops at its cell budget instead).
-const BALL_RESOLUTION_FLOOR: f64 = 0.05;
-
-/// Share of the width asked below the upper bound that the covering of translations
-/// certifies (a little inside the width, so that the interval meets it after rounding).
-const COVER_GOAL_SHARE: f64 = 0.9;
 
 /// Counters of one penetration query.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
@@ -136,160 +112,6 @@ impl SignedDistance {
             translation: u,
             rotation: (contact - origin_b).cross(&u),
         })
-    }
-}
-
-/// The penetration depth of A and B ([`penetration`] after a distance query `d` of the
-/// same pair that did not certify them apart).
-fn penetration_after(
-    a: &Solid,
-    b: &Solid,
-    opts: &QueryOptions,
-    d: &Distance,
-    started: Instant,
-) -> Penetration {
-    let pos_ab = a.relative_pose(b);
-    let slack = query_slack(&a.tree, &b.tree, &pos_ab);
-    let (e_a, e_b) = (a.tree.eps, b.tree.eps);
-    let eps_sum = a.tree.target_eps + b.tree.target_eps;
-    let deadline = opts.budget.max_time.map(|t| started + t);
-    let to_local = a.pose.inverse();
-    // The distance's overlap point, or the middle of its witnesses when undecided.
-    let seed = to_local * nalgebra::center(&d.point_a, &d.point_b);
-    let mut pair = Pair::new(&a.tree, &b.tree, pos_ab);
-    let step_tol = (ASCENT_STEP_SHARE * (e_a + e_b)).max(slack);
-    let allowance = Allowance { e_a, e_b, slack };
-    let deepest = pair.ascend(seed, step_tol, &allowance);
-    let certified = deepest.certified_bound(&allowance);
-    let lower = certified.unwrap_or(0.0);
-
-    let width = match opts.tolerance {
-        Tolerance::Trees => 2.0 * eps_sum,
-        Tolerance::Absolute(t) => t.max(0.0),
-    };
-    let mut dist_opts = *opts;
-    dist_opts.refine = false;
-    dist_opts.budget = Budget {
-        max_time: None,
-        ..opts.budget
-    };
-    let mut search = Search::new(a, b, dist_opts, deadline, lower + width);
-    search.offer_bounding_balls();
-    // A ball against any solid: the covering of the ball's ways out (`ball_depth.rs`),
-    // resolved to a quarter of the width asked, within the bounding balls' bound.
-    let resolution = (BALL_RESOLUTION_SHARE * width).max(BALL_RESOLUTION_FLOOR * eps_sum);
-    let ball = detected_ball_lower(
-        &a.tree,
-        &b.tree,
-        &pos_ab,
-        search.best_upper(),
-        resolution,
-        slack,
-    );
-    let mut point = certified.map(|_| deepest.x);
-    let mut certificate = if certified.is_some() {
-        LowerCertificate::Point
-    } else {
-        LowerCertificate::None
-    };
-    let mut lower = lower;
-    let mut ball_cells = 0;
-    if let Some((depth, centre)) = ball {
-        ball_cells = depth.cells;
-        if depth.lower > lower {
-            (lower, point) = (depth.lower, Some(centre));
-            certificate = LowerCertificate::BallCovering;
-        }
-    }
-    search.goal = lower + width;
-    // First the translation moving B's nearest surface point onto A's (exact for two
-    // balls), then the margins' own gradients, then the two axes.
-    let push = deepest.a.nearest - deepest.b.nearest;
-    if certified.is_none() {
-        // Touching within the trees' accuracy: the point sits on the surfaces, where the
-        // nearest points give no direction; B away from A along the margins' differences.
-        let (ga, gb) = pair.margin_gradients(deepest.x, eps_sum.max(slack));
-        search.along(gb - ga, 0.0);
-    }
-    search.along(push, push.norm());
-    let (ga, gb) = (
-        deepest.a.gradient(&deepest.x),
-        deepest.b.gradient(&deepest.x),
-    );
-    let axis_b = pos_ab.rotation * Vector3::z();
-    for u in [gb, -ga, Vector3::z(), -Vector3::z(), axis_b, -axis_b] {
-        search.along(u, lower.max(0.5 * push.norm()));
-    }
-    let best = search.best.expect("the bounding balls always give a bound");
-    let mut anchors: Vec<Point3<f64>> = point.into_iter().collect();
-    if best.upper - lower > width {
-        // The separating translation's last contact: B's point there lies inside A about
-        // as deep as the translation is long, often in another overlap region than the
-        // distance query's point. The sum climbs from it, from the point of A it reaches
-        // and from their middle.
-        if let Some(c) = best.contact_b {
-            let t = best.translation;
-            let seeds = [c, c + 0.5 * t, c + t];
-            let climbed = pair
-                .certify_from(&seeds, 0.25 * t.norm(), step_tol, &allowance, f64::INFINITY)
-                .expect("three seeds");
-            if let Some(b) = climbed.certified_bound(&allowance) {
-                anchors.push(climbed.x);
-                if b > lower {
-                    (lower, point) = (b, Some(climbed.x));
-                    certificate = LowerCertificate::Point;
-                }
-            }
-        }
-    }
-    let mut cover_cells = 0;
-    if best.upper - lower > width.max(NARROW_REL * best.upper) && !anchors.is_empty() {
-        // Not narrow: several contact regions, each blocking some of the ways out. A
-        // covering of the translations shorter than the upper bound by the sums' Lipschitz
-        // balls (`translation_cover.rs`), within COVER_GOAL_SHARE of the width asked.
-        let covered = translation_cover_lower(
-            &a.tree,
-            &b.tree,
-            &pos_ab,
-            &CoverSpec {
-                from: lower,
-                goal: best.upper - COVER_GOAL_SHARE * width,
-                // Resolved to a quarter of the narrow width (module doc of `translation_cover`:
-                // the cells needed grow as the square of depth over resolution).
-                resolution: resolution.max(BALL_RESOLUTION_SHARE * NARROW_REL * best.upper),
-                anchors: &anchors,
-                step_tol,
-                deadline,
-            },
-        );
-        cover_cells = covered.cells;
-        pair.probes += covered.probes;
-        if covered.lower > lower {
-            lower = covered.lower;
-            certificate = LowerCertificate::TranslationCovering;
-        }
-    }
-    let upper = best.upper.max(lower);
-    let len = best.translation.norm();
-    let direction = if len > 0.0 {
-        a.pose.rotation * (best.translation / len)
-    } else {
-        Vector3::zeros()
-    };
-    Penetration {
-        lower,
-        upper,
-        direction,
-        point: point.map(|x| a.pose * x),
-        certificate,
-        contact_b: best.contact_b.map(|p| a.pose * p),
-        narrow: upper - lower <= (2.0 * eps_sum).max(NARROW_REL * upper),
-        stats: PenetrationStats {
-            probes: pair.probes + ball_cells,
-            cover_cells,
-            distance_queries: 1 + search.queries,
-            budget_exhausted: search.budget_exhausted || d.stats.budget_exhausted,
-        },
     }
 }
 
