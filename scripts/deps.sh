@@ -40,7 +40,8 @@ if [ ! -f "$coal_dir/cmeel.prefix/lib/libcoal.so" ] || [ ! -d "$coal_dir/libcoal
   if ! "$py" -m pip install --disable-pip-version-check --no-warn-script-location --root-user-action=ignore -q \
       --target "$coal_dir.tmp" "libcoal==$coal_version"; then
     rm -rf "$coal_dir.tmp"
-    echo "revdist: error: pip could not install libcoal==$coal_version (network?); the peers benchmark needs it" >&2
+    free=$(df -h --output=avail "$root" 2>/dev/null | tail -1 | tr -d ' ')
+    echo "revdist: error: pip could not install libcoal==$coal_version (about 350 MB; pip's error above says why: no network, or no space left, ${free:-?} free under $root); the peers benchmark needs it" >&2
     exit 1
   fi
   rm -rf "$coal_dir"

@@ -472,6 +472,10 @@ pub fn run(opts: &Options) -> std::io::Result<Summary> {
             .iter()
             .filter(|o| o.kind == kind && o.overlap)
             .collect();
+        if of.is_empty() {
+            // A `--cases` run may hold no case of this kind: no line of medians of nothing.
+            continue;
+        }
         let target_met = of
             .iter()
             .filter(|o| {
