@@ -19,8 +19,13 @@ use crate::solid::Solid;
 use nalgebra::{Isometry3, Point3, Translation3, Vector3};
 use std::time::Instant;
 
-/// Distance queries one penetration search may spend.
+/// Distance queries one penetration search may spend along the deepest point's
+/// directions.
 pub const MAX_QUERIES: usize = 16;
+
+/// Further distance queries granted along the direction where the covering of translations
+/// was capped ([`Search::grant`]).
+pub const CAPPED_DIRECTION_QUERIES: usize = 4;
 
 /// Steps along one direction.
 const STEPS_PER_DIRECTION: usize = 6;
@@ -53,6 +58,8 @@ pub struct Search<'a> {
     pub goal: f64,
     pub best: Option<Separation>,
     pub queries: usize,
+    /// Queries allowed in all: [`MAX_QUERIES`], plus what [`Search::grant`] added.
+    max_queries: usize,
     pub budget_exhausted: bool,
 }
 
@@ -77,6 +84,7 @@ impl<'a> Search<'a> {
             goal,
             best: None,
             queries: 0,
+            max_queries: MAX_QUERIES,
             budget_exhausted: false,
         }
     }
@@ -97,7 +105,7 @@ impl<'a> Search<'a> {
         if self.best_upper() <= self.goal {
             return true;
         }
-        if self.queries >= MAX_QUERIES {
+        if self.queries >= self.max_queries {
             return true;
         }
         if self.deadline.is_some_and(|d| Instant::now() >= d) {
@@ -105,6 +113,11 @@ impl<'a> Search<'a> {
             return true;
         }
         false
+    }
+
+    /// Allows exactly `extra` more queries from now on (what was left unspent lapses).
+    pub fn grant(&mut self, extra: usize) {
+        self.max_queries = self.queries + extra;
     }
 
     /// The bound from the solids' bounding balls (no query): A's approximating surface lies

@@ -5,9 +5,9 @@
 
 use super::ball_depth::detected_ball_lower;
 use super::deepest::{Allowance, Pair, Probe};
-use super::separate::{Search, Separation};
+use super::separate::{Search, Separation, CAPPED_DIRECTION_QUERIES};
 use super::signed::{LowerCertificate, Penetration, PenetrationStats, NARROW_REL};
-use super::translation_cover::{translation_cover_lower, CoverSpec};
+use super::translation_cover::{translation_cover_lower, CoverSpec, Covered};
 use crate::query::front::distance::{query_slack, Distance, QueryOptions, Tolerance};
 use crate::query::search::Budget;
 use crate::solid::Solid;
@@ -158,15 +158,14 @@ impl Stages<'_> {
 
     /// Several contact regions, each blocking some of the ways out: a covering of the
     /// translations shorter than `upper` by the sums' Lipschitz balls
-    /// (`translation_cover.rs`), within COVER_GOAL_SHARE of `narrow_width`. Returns the
-    /// covering's cells and points classified.
+    /// (`translation_cover.rs`), within COVER_GOAL_SHARE of `narrow_width`.
     fn cover_translations(
         &self,
         upper: f64,
         narrow_width: f64,
         anchors: &[Point3<f64>],
         lower: &mut LowerSoFar,
-    ) -> (usize, usize) {
+    ) -> Covered {
         let covered = translation_cover_lower(
             &self.a.tree,
             &self.b.tree,
@@ -185,7 +184,7 @@ impl Stages<'_> {
             },
         );
         lower.raise(covered.lower, LowerCertificate::TranslationCovering, None);
-        (covered.cells, covered.probes)
+        covered
     }
 }
 
@@ -253,19 +252,28 @@ pub(super) fn penetration_after(
         certified.is_some(),
         lower.value,
     );
-    let best = search.best.expect("the bounding balls always give a bound");
+    let first = search.best.expect("the bounding balls always give a bound");
     let mut anchors: Vec<Point3<f64>> = lower.point.into_iter().collect();
-    if best.upper - lower.value > width {
-        stages.climb_from_contact(&mut pair, &best, &mut lower, &mut anchors);
+    if first.upper - lower.value > width {
+        stages.climb_from_contact(&mut pair, &first, &mut lower, &mut anchors);
     }
     let mut cover_cells = 0;
-    let narrow_width = width.max(NARROW_REL * best.upper);
-    if best.upper - lower.value > narrow_width && !anchors.is_empty() {
-        let (cells, probes) =
-            stages.cover_translations(best.upper, narrow_width, &anchors, &mut lower);
-        cover_cells = cells;
-        pair.probes += probes;
+    let narrow_width = width.max(NARROW_REL * first.upper);
+    if first.upper - lower.value > narrow_width && !anchors.is_empty() {
+        let covered = stages.cover_translations(first.upper, narrow_width, &anchors, &mut lower);
+        cover_cells = covered.cells;
+        pair.probes += covered.probes;
+        // Where no point held B in, a shorter way out may lie: a few more queries there
+        // when the interval is still not narrow.
+        if let Some(t) = covered.capped_at {
+            if search.best_upper() - lower.value > narrow_width {
+                search.goal = lower.value + width;
+                search.grant(CAPPED_DIRECTION_QUERIES);
+                search.along(t, t.norm());
+            }
+        }
     }
+    let best = search.best.expect("the bounding balls always give a bound");
     let upper = best.upper.max(lower.value);
     let len = best.translation.norm();
     let direction = if len > 0.0 {

@@ -389,11 +389,23 @@ fn translation_covering_reaches_the_depth_of_a_ball_in_a_hole() {
             past.lower >= exact - 2.0 * resolution - 4.0 * eps,
             "r {r}: {past:?} far below exact {exact} (from {from})"
         );
+        // Capped below its goal: the cell that capped it lies past the bound, within the
+        // goal (its centre translation is where the search for a way out looks next).
+        let t = past.capped_at.expect("capped below the goal");
+        assert!(
+            past.lower <= t.norm() && t.norm() <= exact + 0.05,
+            "r {r}: capped at {t:?}, lower {}",
+            past.lower
+        );
         let short = translation_cover_lower(&ring.tree, &b.tree, &pos_ab, &spec(exact - 0.02));
         assert!(
             (short.lower - (exact - 0.02)).abs() < 1e-9,
             "r {r}: {short:?} short of the goal {}",
             exact - 0.02
+        );
+        assert!(
+            short.capped_at.is_none(),
+            "r {r}: {short:?} reached its goal"
         );
     }
 }

@@ -155,6 +155,11 @@ pub struct Covered {
     pub cells: usize,
     /// Points classified against both solids.
     pub probes: usize,
+    /// The centre translation of the cell that capped `lower` below the goal (too small
+    /// to split, or the first left when the cells or the time ran out): a direction in
+    /// which no point's margins could be certified to hold B in, and so where a shorter
+    /// way out may lie (A's frame, as B's translations).
+    pub capped_at: Option<Vector3<f64>>,
 }
 
 /// The covering's inputs besides the trees and B's pose in A's frame.
@@ -189,6 +194,7 @@ pub fn translation_cover_lower(
         lower: spec.from,
         cells: 0,
         probes: 0,
+        capped_at: None,
     };
     let usable = spec.goal > spec.from
         && spec.from >= 0.0
@@ -225,6 +231,7 @@ pub fn translation_cover_lower(
         let out_of_time = spec.deadline.is_some_and(|d| Instant::now() >= d);
         if out.cells >= MAX_CELLS || out_of_time {
             limit = cell.r0;
+            out.capped_at = Some(cell.centre_and_reach().0);
             break;
         }
         out.cells += 1;
@@ -277,6 +284,7 @@ pub fn translation_cover_lower(
         }
         if reach <= spec.resolution {
             limit = cell.r0;
+            out.capped_at = Some(t);
             continue;
         }
         let hint = best
