@@ -76,7 +76,10 @@
 //! witness normal `n` and gap `g`, the touching translation is about `t - g n`, and its
 //! component along `n` (the nearest point of the contact's tangent plane in translation
 //! space) is the next candidate. The fixed points are translations parallel to the contact
-//! normal, where the minimal translation of a smooth contact is.
+//! normal, where the minimal translation of a smooth contact is. When the covering of
+//! translations stops short of its goal, the cell that stopped it is a translation no
+//! point's margins held B in at: a few more queries search along it, where the deepest
+//! point's directions may all have missed a sideways way out.
 //!
 //! **What is certified and what is not.** `lower <= PD <= upper` always (an unanswered side
 //! stays `0` or `inf`). Narrow intervals are reached for shallow contacts and for balls
