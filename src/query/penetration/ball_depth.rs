@@ -33,7 +33,7 @@ use crate::bvh::containment::point_in_profile_capped;
 use crate::bvh::offset_solid::{Core, OffsetSolid};
 use crate::bvh::QueryTree;
 use crate::num::SmallestFirst;
-use nalgebra::{Isometry3, Point2, Point3};
+use nalgebra::{Isometry3, Point2, Point3, Vector2, Vector3};
 use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 
@@ -111,6 +111,19 @@ pub struct BallDepth {
     pub lower: f64,
     /// Classifications spent.
     pub cells: usize,
+    /// The centre of the cell that capped `lower` below the reach (too small to split, or
+    /// the first left when the cells ran out), as an offset from the centre's meridian
+    /// point (radial, axial): where the ball may get out.
+    pub capped_at: Option<Vector2<f64>>,
+}
+
+impl Cell {
+    /// The cell's centre as an offset from the disk's centre (radial, axial).
+    fn centre_offset(&self) -> Vector2<f64> {
+        let s = 0.5 * (self.s0 + self.s1);
+        let phi = 0.5 * (self.phi0 + self.phi1);
+        Vector2::new(s * phi.cos(), s * phi.sin())
+    }
 }
 
 /// Certified lower bound of the depth of the ball `U(centre, radius)` (A's own frame; the
@@ -132,6 +145,7 @@ pub fn ball_depth_lower(
         return BallDepth {
             lower: 0.0,
             cells: 0,
+            capped_at: None,
         };
     }
     let m = Point2::new(centre.x.hypot(centre.y), centre.z);
@@ -157,6 +171,7 @@ pub fn ball_depth_lower(
         }));
     }
     let mut cells = 0;
+    let mut capped_at = None;
     while let Some(SmallestFirst { item: mut cell, .. }) = heap.pop() {
         if cell.s0 >= limit {
             break;
@@ -167,6 +182,7 @@ pub fn ball_depth_lower(
         }
         if cells >= MAX_CELLS {
             limit = cell.s0;
+            capped_at = Some(cell.centre_offset());
             break;
         }
         cells += 1;
@@ -176,6 +192,7 @@ pub fn ball_depth_lower(
         }
         if reach_cell <= resolution {
             limit = cell.s0;
+            capped_at = Some(cell.centre_offset());
             continue;
         }
         for half in cell.split() {
@@ -185,7 +202,31 @@ pub fn ball_depth_lower(
     BallDepth {
         lower: (limit - rounding).max(0.0),
         cells,
+        capped_at,
     }
+}
+
+/// A meridian-plane offset (radial, axial) from the point `c` as a 3-D vector: the radial
+/// part along `c`'s direction from the axis (the x axis for a point on it).
+fn lift(c: &Point3<f64>, offset: Vector2<f64>) -> Vector3<f64> {
+    let rho = c.x.hypot(c.y);
+    let (ux, uy) = if rho > 0.0 {
+        (c.x / rho, c.y / rho)
+    } else {
+        (1.0, 0.0)
+    };
+    Vector3::new(offset.x * ux, offset.x * uy, offset.y)
+}
+
+/// [`ball_depth_lower`]'s answer for a pair of which one solid is a detected ball.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DetectedBall {
+    pub depth: BallDepth,
+    /// The ball's centre, A's frame.
+    pub centre: Point3<f64>,
+    /// B's translation (A's frame) that moves the ball to the cell that capped the bound
+    /// ([`BallDepth::capped_at`]): the direction to search for its way out.
+    pub capped_translation: Option<Vector3<f64>>,
 }
 
 /// The bound of [`ball_depth_lower`] for a pair of which one solid is a detected ball
@@ -199,7 +240,7 @@ pub fn detected_ball_lower(
     reach: f64,
     resolution: f64,
     slack: f64,
-) -> Option<(BallDepth, Point3<f64>)> {
+) -> Option<DetectedBall> {
     let inner_ball = |t: &QueryTree| match t.offset {
         Some(OffsetSolid {
             core: Core::Point { z },
@@ -208,22 +249,31 @@ pub fn detected_ball_lower(
         }) => Some((Point3::new(0.0, 0.0, z), radius - error)),
         _ => None,
     };
+    // The ball in B, against A: B moves with the ball's centre.
     let in_b = inner_ball(tb).map(|(c, r)| {
         let centre = pos_ab * c;
-        (
-            ball_depth_lower(ta, &centre, r, reach, resolution, slack),
+        let depth = ball_depth_lower(ta, &centre, r, reach, resolution, slack);
+        DetectedBall {
+            depth,
             centre,
-        )
+            capped_translation: depth.capped_at.map(|off| lift(&centre, off)),
+        }
     });
+    // The ball in A, against B (B's frame): moving the ball by `v` relative to B is moving
+    // B by `-v`, turned into A's frame.
     let in_a = inner_ball(ta).map(|(c, r)| {
-        let centre = pos_ab.inverse() * c;
-        (
-            ball_depth_lower(tb, &centre, r, reach, resolution, slack),
-            c,
-        )
+        let centre_in_b = pos_ab.inverse() * c;
+        let depth = ball_depth_lower(tb, &centre_in_b, r, reach, resolution, slack);
+        DetectedBall {
+            depth,
+            centre: c,
+            capped_translation: depth
+                .capped_at
+                .map(|off| -(pos_ab.rotation * lift(&centre_in_b, off))),
+        }
     });
     match (in_a, in_b) {
-        (Some(x), Some(y)) => Some(if x.0.lower >= y.0.lower { x } else { y }),
+        (Some(x), Some(y)) => Some(if x.depth.lower >= y.depth.lower { x } else { y }),
         (x, y) => x.or(y),
     }
 }

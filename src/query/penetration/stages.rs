@@ -73,21 +73,24 @@ struct Stages<'s> {
 impl Stages<'_> {
     /// A ball against any solid: the covering of the ball's ways out (`ball_depth.rs`),
     /// resolved to [`Stages::ball_resolution`], within the upper bound known. Returns the
-    /// points the covering classified.
-    fn ball_lower(&self, upper: f64, lower: &mut LowerSoFar) -> usize {
-        let ball = detected_ball_lower(
+    /// points the covering classified and B's translation towards the cell that capped it.
+    fn ball_lower(&self, upper: f64, lower: &mut LowerSoFar) -> (usize, Option<Vector3<f64>>) {
+        let Some(ball) = detected_ball_lower(
             &self.a.tree,
             &self.b.tree,
             &self.pos_ab,
             upper,
             self.ball_resolution(),
             self.slack,
-        );
-        let Some((depth, centre)) = ball else {
-            return 0;
+        ) else {
+            return (0, None);
         };
-        lower.raise(depth.lower, LowerCertificate::BallCovering, Some(centre));
-        depth.cells
+        lower.raise(
+            ball.depth.lower,
+            LowerCertificate::BallCovering,
+            Some(ball.centre),
+        );
+        (ball.depth.cells, ball.capped_translation)
     }
 
     /// A quarter of the width asked, never below a share of the trees' accuracy.
@@ -243,8 +246,13 @@ pub(super) fn penetration_after(
     };
     let mut search = Search::new(a, b, dist_opts, deadline, lower.value + width);
     search.offer_bounding_balls();
-    let ball_cells = stages.ball_lower(search.best_upper(), &mut lower);
+    let (ball_cells, ball_way_out) = stages.ball_lower(search.best_upper(), &mut lower);
     search.goal = lower.value + width;
+    if let Some(t) = ball_way_out {
+        // The ball's covering was capped where no point held the ball in: its way out,
+        // within the covering's resolution of the exact depth for a ball.
+        search.along(t, t.norm());
+    }
     stages.search_directions(
         &mut search,
         &mut pair,

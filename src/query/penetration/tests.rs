@@ -179,9 +179,10 @@ fn ball_in_the_hole_of_a_torus() {
 /// must stay below it and within its resolution plus the trees' bound of it.
 #[test]
 fn ball_covering_against_exact_torus_depths() {
-    use super::ball_depth::ball_depth_lower;
+    use super::ball_depth::{ball_depth_lower, MAX_CELLS};
     let mut rng = SplitMix64(4005);
     let ring = named("ring", 1e-4);
+    let mut resolved = 0;
     let outside_both = |q: (f64, f64), rr: f64| {
         let d1 = (q.0 - 0.9).hypot(q.1 - 0.6);
         let d2 = (q.0 + 0.9).hypot(q.1 - 0.6);
@@ -241,7 +242,33 @@ fn ball_covering_against_exact_torus_depths() {
             got.lower,
             got.cells
         );
+        // Capped at the resolution (not by the cell budget), the cell that capped the bound
+        // is a way out: no point there is held in (its centre lies within the resolution
+        // and the trees' bound of the level set `d(., A) >= r`, outside both disks shrunk
+        // by that much), at the bound's radius.
+        let off = got.capped_at.expect("capped below the reach 4");
+        if got.cells >= MAX_CELLS {
+            continue;
+        }
+        resolved += 1;
+        let q = (rho + off.x, z + off.y);
+        let tol = resolution + 2.0 * ring.tree.eps + 1e-9;
+        assert!(
+            outside_both(q, rr - tol),
+            "r {r} at ({rho}, {z}): capped at {q:?}, inside the disks of radius {rr} ({} cells)",
+            got.cells
+        );
+        assert!(
+            got.lower - 1e-9 <= off.norm() && off.norm() <= got.lower + resolution + 1e-9,
+            "r {r} at ({rho}, {z}): capped at radius {}, bound {}",
+            off.norm(),
+            got.lower
+        );
     }
+    assert!(
+        resolved >= 20,
+        "only {resolved} of 40 capped at the resolution"
+    );
 }
 
 #[test]
