@@ -79,7 +79,8 @@
 //! normal, where the minimal translation of a smooth contact is. When the covering of
 //! translations stops short of its goal, the cell that stopped it is a translation no
 //! point's margins held B in at: a few more queries search along it, where the deepest
-//! point's directions may all have missed a sideways way out.
+//! point's directions may all have missed a sideways way out. A ball's covering, capped
+//! likewise, gives the search its first direction: the ball's way out.
 //!
 //! **What is certified and what is not.** `lower <= PD <= upper` always (an unanswered side
 //! stays `0` or `inf`). Narrow intervals are reached for shallow contacts and for balls
