@@ -111,9 +111,9 @@ pub struct BallDepth {
     pub lower: f64,
     /// Classifications spent.
     pub cells: usize,
-    /// The centre of the cell that capped `lower` below the reach (too small to split, or
-    /// the first left when the cells ran out), as an offset from the centre's meridian
-    /// point (radial, axial): where the ball may get out.
+    /// The centre of the cell that capped `lower` below the reach, too small to split, as
+    /// an offset from the centre's meridian point (radial, axial): where the ball gets out,
+    /// within the resolution (`None` when the cells ran out first).
     pub capped_at: Option<Vector2<f64>>,
 }
 
@@ -181,8 +181,9 @@ pub fn ball_depth_lower(
             continue;
         }
         if cells >= MAX_CELLS {
+            // Capped by the budget: the cell left is no way out.
             limit = cell.s0;
-            capped_at = Some(cell.centre_offset());
+            capped_at = None;
             break;
         }
         cells += 1;

@@ -185,14 +185,22 @@ impl<'a> Search<'a> {
         (Some(dt), d)
     }
 
-    /// Searches along the unit direction `u` from the estimated touching length `s0`.
+    /// Searches along the unit direction `u` from the estimated touching length `s0`, the
+    /// first step past an answer that is not separated half that length.
     pub fn along(&mut self, u: Vector3<f64>, s0: f64) {
+        self.along_from(u, s0, 0.5 * s0);
+    }
+
+    /// [`Search::along`] with the first step past an answer that is not separated `step`
+    /// (at least the margin; each next step three times the last): short for a direction
+    /// known to leave within a little of `s0`.
+    pub fn along_from(&mut self, u: Vector3<f64>, s0: f64, step: f64) {
         if u.norm().is_nan() || u.norm() <= 0.0 || !s0.is_finite() {
             return;
         }
         let mut u = u.normalize();
         let mut s = s0.max(0.0);
-        let mut grow = self.margin.max(0.5 * s);
+        let mut grow = self.margin.max(step);
         for _ in 0..STEPS_PER_DIRECTION {
             if self.done() {
                 return;

@@ -246,10 +246,10 @@ fn ball_covering_against_exact_torus_depths() {
         // is a way out: no point there is held in (its centre lies within the resolution
         // and the trees' bound of the level set `d(., A) >= r`, outside both disks shrunk
         // by that much), at the bound's radius.
-        let off = got.capped_at.expect("capped below the reach 4");
-        if got.cells >= MAX_CELLS {
+        let Some(off) = got.capped_at else {
+            assert_eq!(got.cells, MAX_CELLS, "r {r} at ({rho}, {z}): no cap below 4");
             continue;
-        }
+        };
         resolved += 1;
         let q = (rho + off.x, z + off.y);
         let tol = resolution + 2.0 * ring.tree.eps + 1e-9;
