@@ -135,7 +135,7 @@ fn apart() -> Penetration {
 /// Certified interval of the translational penetration depth of two posed solids
 /// (module doc of [`mod@crate::query::penetration`]): `lower <= PD <= upper`.
 ///
-/// `opts.tolerance` asks for `upper - lower` (the default, [`Tolerance::Trees`], for
+/// `opts.tolerance` asks for `upper - lower` (the default, [`Tolerance::Trees`](crate::query::Tolerance::Trees), for
 /// `2 (eps_a + eps_b)`; the lower bound alone loses up to twice the larger leaf bound);
 /// `opts.budget.max_time` bounds the whole query, `max_node_pairs` each distance query.
 /// Solids certified apart have depth `[0, 0]`.

@@ -101,6 +101,27 @@ impl Stages<'_> {
         (ball.depth.cells, ball.capped_translation)
     }
 
+    /// The ball's covering was capped where no point held the ball in: B's translation `t`
+    /// there is the ball's way out, within the covering's resolution of its exact depth.
+    /// The cell's centre may still hold the ball in by up to the resolution and the trees'
+    /// bounds, so the first query goes that much past it, and the steps are short
+    /// ([`BALL_WAY_OUT_STEP`]).
+    fn follow_ball_way_out(&self, search: &mut Search, t: Vector3<f64>) {
+        let past = self.ball_resolution() + self.allowance.e_a + self.allowance.e_b;
+        search.along_from(t, t.norm() + past, past.max(BALL_WAY_OUT_STEP * t.norm()));
+    }
+
+    /// The covering of translations was capped at B's translation `t`, where no point held
+    /// B in: a shorter way out may lie along it. A few more queries there
+    /// ([`CAPPED_DIRECTION_QUERIES`]) while the interval is not narrow.
+    fn follow_capped_cell(&self, search: &mut Search, t: Vector3<f64>, lower: f64, narrow: f64) {
+        if search.best_upper() - lower > narrow {
+            search.goal = lower + self.width;
+            search.grant(CAPPED_DIRECTION_QUERIES);
+            search.along(t, t.norm());
+        }
+    }
+
     /// A quarter of the width asked, never below a share of the trees' accuracy.
     fn ball_resolution(&self) -> f64 {
         (BALL_RESOLUTION_SHARE * self.width).max(BALL_RESOLUTION_FLOOR * self.eps_sum)
@@ -257,12 +278,7 @@ pub(super) fn penetration_after(
     let (ball_cells, ball_way_out) = stages.ball_lower(search.best_upper(), &mut lower);
     search.goal = lower.value + width;
     if let Some(t) = ball_way_out {
-        // The ball's covering was capped where no point held the ball in: its way out,
-        // within the covering's resolution of the exact depth for a ball.
-        // The cell's centre may still hold the ball in by up to the resolution and the
-        // trees' bounds: the first query goes that much past it.
-        let past = stages.ball_resolution() + stages.allowance.e_a + stages.allowance.e_b;
-        search.along_from(t, t.norm() + past, past.max(BALL_WAY_OUT_STEP * t.norm()));
+        stages.follow_ball_way_out(&mut search, t);
     }
     stages.search_directions(
         &mut search,
@@ -282,14 +298,8 @@ pub(super) fn penetration_after(
         let covered = stages.cover_translations(first.upper, narrow_width, &anchors, &mut lower);
         cover_cells = covered.cells;
         pair.probes += covered.probes;
-        // Where no point held B in, a shorter way out may lie: a few more queries there
-        // when the interval is still not narrow.
         if let Some(t) = covered.capped_at {
-            if search.best_upper() - lower.value > narrow_width {
-                search.goal = lower.value + width;
-                search.grant(CAPPED_DIRECTION_QUERIES);
-                search.along(t, t.norm());
-            }
+            stages.follow_capped_cell(&mut search, t, lower.value, narrow_width);
         }
     }
     let best = search.best.expect("the bounding balls always give a bound");

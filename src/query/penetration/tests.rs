@@ -247,7 +247,10 @@ fn ball_covering_against_exact_torus_depths() {
         // and the trees' bound of the level set `d(., A) >= r`, outside both disks shrunk
         // by that much), at the bound's radius.
         let Some(off) = got.capped_at else {
-            assert_eq!(got.cells, MAX_CELLS, "r {r} at ({rho}, {z}): no cap below 4");
+            assert_eq!(
+                got.cells, MAX_CELLS,
+                "r {r} at ({rho}, {z}): no cap below 4"
+            );
             continue;
         };
         resolved += 1;
