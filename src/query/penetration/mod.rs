@@ -78,8 +78,9 @@
 //! space) is the next candidate. The fixed points are translations parallel to the contact
 //! normal, where the minimal translation of a smooth contact is. When the covering of
 //! translations stops short of its goal, the cell that stopped it is a translation no
-//! point's margins held B in at: a few more queries search along it, where the deepest
-//! point's directions may all have missed a sideways way out. A ball's covering, capped
+//! point's margins held B in at (or, when its cells ran out, the first it had not
+//! examined): a few more queries search along it, where the deepest point's directions
+//! may all have missed a sideways way out. A ball's covering, capped
 //! likewise, gives the search its first direction: the ball's way out.
 //!
 //! **What is certified and what is not.** `lower <= PD <= upper` always (an unanswered side

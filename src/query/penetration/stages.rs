@@ -111,8 +111,9 @@ impl Stages<'_> {
         search.along_from(t, t.norm() + past, past.max(BALL_WAY_OUT_STEP * t.norm()));
     }
 
-    /// The covering of translations was capped at B's translation `t`, where no point held
-    /// B in: a shorter way out may lie along it. A few more queries there
+    /// The covering of translations was capped at B's translation `t`: where no point held
+    /// B in (or the first cell left unexamined when its cells ran out), so a shorter way
+    /// out may lie along it. A few more queries there
     /// ([`CAPPED_DIRECTION_QUERIES`]) while the interval is not narrow.
     fn follow_capped_cell(&self, search: &mut Search, t: Vector3<f64>, lower: f64, narrow: f64) {
         if search.best_upper() - lower > narrow {
@@ -293,10 +294,12 @@ pub(super) fn penetration_after(
         stages.climb_from_contact(&mut pair, &first, &mut lower, &mut anchors);
     }
     let mut cover_cells = 0;
+    let mut cover_timed_out = false;
     let narrow_width = width.max(NARROW_REL * first.upper);
     if first.upper - lower.value > narrow_width && !anchors.is_empty() {
         let covered = stages.cover_translations(first.upper, narrow_width, &anchors, &mut lower);
         cover_cells = covered.cells;
+        cover_timed_out = covered.timed_out;
         pair.probes += covered.probes;
         if let Some(t) = covered.capped_at {
             stages.follow_capped_cell(&mut search, t, lower.value, narrow_width);
@@ -322,7 +325,9 @@ pub(super) fn penetration_after(
             probes: pair.probes + ball_cells,
             cover_cells,
             distance_queries: 1 + search.queries,
-            budget_exhausted: search.budget_exhausted || d.stats.budget_exhausted,
+            budget_exhausted: search.budget_exhausted
+                || cover_timed_out
+                || d.stats.budget_exhausted,
         },
     }
 }

@@ -274,6 +274,74 @@ fn ball_covering_against_exact_torus_depths() {
     );
 }
 
+/// A ball's way out lifted to B's translation (`DetectedBall::capped_translation`), both
+/// ways round: the ball in B against the ring, and the ball as A with the ring as B, at
+/// rotated poses with the ball's centre off every axis. Moved by it, the ball's centre lies
+/// about `r` from the ring's true surface (the tube's distance in the ring's frame), within
+/// the covering's resolution, the trees' bounds and the ball's detection error: a wrong
+/// sign or a missing rotation puts it deep inside the tube.
+#[test]
+fn a_balls_way_out_frees_the_ball_both_ways_round() {
+    use super::ball_depth::detected_ball_lower;
+    let eps = 1e-4;
+    let ring = named("ring", eps);
+    let tube = |p: &nalgebra::Point3<f64>| (p.x.hypot(p.y) - 0.9).hypot(p.z - 0.6) - 0.6;
+    let mut rng = SplitMix64(4007);
+    let resolution = 1e-3;
+    let (mut ball_in_b, mut ball_in_a) = (0, 0);
+    for _ in 0..16 {
+        let r = rng.range(0.2, 0.5);
+        let b = ball(r, eps);
+        let error = b.tree.offset.as_ref().expect("a ball is detected").error;
+        let tol = resolution + 2.0 * eps + error + 1e-9;
+        // The ball's centre in the ring's frame: pressed into the tube, off the axes.
+        let c = loop {
+            let q = nalgebra::Point3::new(
+                rng.range(-1.6, 1.6),
+                rng.range(-1.6, 1.6),
+                rng.range(-0.3, 1.5),
+            );
+            if tube(&q) < r - 0.05 && q.x.abs() > 0.1 && q.y.abs() > 0.1 {
+                break q;
+            }
+        };
+        let rot = random_rotation(&mut rng);
+        // The ball's own centre is its frame's origin: B's pose in A's (the ring's) frame.
+        let pos_ab = Isometry3::from_parts(Translation3::from(c.coords), rot);
+        let found = detected_ball_lower(&ring.tree, &b.tree, &pos_ab, 4.0, resolution, 0.0)
+            .expect("B is a ball");
+        if let Some(t) = found.capped_translation {
+            ball_in_b += 1;
+            let moved = found.centre + t;
+            assert!(
+                tube(&moved) >= r - tol,
+                "ball in B, r {r} at {c:?}: {moved:?}"
+            );
+        }
+        // Roles swapped: the ring is B, placed by the inverse pose in the ball's frame;
+        // moved by `t` there, the ball's centre (A's origin) seen from the ring.
+        let pos_ba = pos_ab.inverse();
+        let found = detected_ball_lower(&b.tree, &ring.tree, &pos_ba, 4.0, resolution, 0.0)
+            .expect("A is a ball");
+        if let Some(t) = found.capped_translation {
+            ball_in_a += 1;
+            let moved_ring = Isometry3::from_parts(
+                Translation3::from(pos_ba.translation.vector + t),
+                pos_ba.rotation,
+            );
+            let centre_in_ring = moved_ring.inverse() * found.centre;
+            assert!(
+                tube(&centre_in_ring) >= r - tol,
+                "ball in A, r {r} at {c:?}: {centre_in_ring:?}"
+            );
+        }
+    }
+    assert!(
+        ball_in_b >= 8 && ball_in_a >= 8,
+        "{ball_in_b} and {ball_in_a} of 16 capped"
+    );
+}
+
 #[test]
 fn apart_solids_have_depth_zero() {
     let a = named("pawn", 1e-4);
@@ -426,6 +494,11 @@ fn translation_covering_reaches_the_depth_of_a_ball_in_a_hole() {
             past.lower <= t.norm() && t.norm() <= exact + 0.05,
             "r {r}: capped at {t:?}, lower {}",
             past.lower
+        );
+        // The ball's only ways out are along the ring's axis (A's z).
+        assert!(
+            t.z.abs() > 0.9 * t.norm(),
+            "r {r}: capped at {t:?}, off the axis"
         );
         let short = translation_cover_lower(&ring.tree, &b.tree, &pos_ab, &spec(exact - 0.02));
         assert!(

@@ -155,11 +155,13 @@ pub struct Covered {
     pub cells: usize,
     /// Points classified against both solids.
     pub probes: usize,
-    /// The centre translation of the cell that capped `lower` below the goal (too small
-    /// to split, or the first left when the cells or the time ran out): a direction in
-    /// which no point's margins could be certified to hold B in, and so where a shorter
-    /// way out may lie (A's frame, as B's translations).
+    /// The centre translation of the cell that capped `lower` below the goal (A's frame,
+    /// as B's translations): too small to split, a translation at which no point's margins
+    /// could be certified to hold B in, so where a shorter way out may lie; or, when the
+    /// cells or the time ran out, the first cell not yet examined.
     pub capped_at: Option<Vector3<f64>>,
+    /// The deadline passed before the goal was reached.
+    pub timed_out: bool,
 }
 
 /// The covering's inputs besides the trees and B's pose in A's frame.
@@ -195,6 +197,7 @@ pub fn translation_cover_lower(
         cells: 0,
         probes: 0,
         capped_at: None,
+        timed_out: false,
     };
     let usable = spec.goal > spec.from
         && spec.from >= 0.0
@@ -230,6 +233,7 @@ pub fn translation_cover_lower(
         cell.r1 = cell.r1.min(limit);
         let out_of_time = spec.deadline.is_some_and(|d| Instant::now() >= d);
         if out.cells >= MAX_CELLS || out_of_time {
+            out.timed_out = out_of_time;
             limit = cell.r0;
             out.capped_at = Some(cell.centre_and_reach().0);
             break;
