@@ -94,13 +94,7 @@ impl Row {
     }
     /// The name of `lower`'s certificate, as the CLI's JSON spells it (empty when apart).
     pub(super) fn certificate_name(&self) -> &'static str {
-        match self.certificate {
-            None => "",
-            Some(LowerCertificate::None) => "none",
-            Some(LowerCertificate::Point) => "point",
-            Some(LowerCertificate::BallCovering) => "ball_covering",
-            Some(LowerCertificate::TranslationCovering) => "translation_covering",
-        }
+        self.certificate.map_or("", LowerCertificate::name)
     }
     pub(super) fn coal_tolerance(&self) -> f64 {
         let scene = 1.0 + self.pose.translation.vector.norm() + 2.0 * self.size;

@@ -66,9 +66,14 @@ impl Cell {
     }
 
     fn centre(&self, m: Point2<f64>) -> Point2<f64> {
+        m + self.centre_offset()
+    }
+
+    /// The cell's centre as an offset from the disk's centre (radial, axial).
+    fn centre_offset(&self) -> Vector2<f64> {
         let s = 0.5 * (self.s0 + self.s1);
         let phi = 0.5 * (self.phi0 + self.phi1);
-        Point2::new(m.x + s * phi.cos(), m.y + s * phi.sin())
+        Vector2::new(s * phi.cos(), s * phi.sin())
     }
 
     /// Largest `rho` of the cell's points (cells never reach past a full turn: the disk
@@ -115,15 +120,6 @@ pub struct BallDepth {
     /// an offset from the centre's meridian point (radial, axial): where the ball gets out,
     /// within the resolution (`None` when the cells ran out first).
     pub capped_at: Option<Vector2<f64>>,
-}
-
-impl Cell {
-    /// The cell's centre as an offset from the disk's centre (radial, axial).
-    fn centre_offset(&self) -> Vector2<f64> {
-        let s = 0.5 * (self.s0 + self.s1);
-        let phi = 0.5 * (self.phi0 + self.phi1);
-        Vector2::new(s * phi.cos(), s * phi.sin())
-    }
 }
 
 /// Certified lower bound of the depth of the ball `U(centre, radius)` (A's own frame; the

@@ -252,8 +252,9 @@ impl<'a> Pair<'a> {
 
     /// The point with the best certificate ([`Probe::certified_bound`] with the allowance
     /// `w`) that ascents of the certified sum from `seeds` find, the first step of each the
-    /// longer of `reach` and the seed's smaller margin. The sum is flat along the segment between two nearest points (two balls), so
-    /// a small share of the smaller clearance is added to keep the point off the surfaces.
+    /// longer of `reach` and the seed's smaller margin. The sum is flat along the segment
+    /// between two nearest points (two balls), so a small share of the smaller clearance is
+    /// added to keep the point off the surfaces.
     /// Stops when the step falls below `step_tol`, or as soon as a certificate exceeds
     /// `enough` (infinite: never). `None` without seeds.
     pub fn certify_from(

@@ -30,8 +30,7 @@ pub struct PenetrationStats {
 
 /// The certificate of a penetration depth's lower bound (module doc of
 /// [`mod@crate::query::penetration`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LowerCertificate {
     /// No positive lower bound was certified (`lower` is 0).
     None,
@@ -44,6 +43,25 @@ pub enum LowerCertificate {
     /// several points' margins ([`super::translation_cover`]); `point`'s own certificate
     /// is the ball about no translation.
     TranslationCovering,
+}
+
+impl LowerCertificate {
+    /// Its name in the JSON answers and the harness's tables: `none`, `point`,
+    /// `ball_covering` or `translation_covering`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LowerCertificate::None => "none",
+            LowerCertificate::Point => "point",
+            LowerCertificate::BallCovering => "ball_covering",
+            LowerCertificate::TranslationCovering => "translation_covering",
+        }
+    }
+}
+
+impl serde::Serialize for LowerCertificate {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
 }
 
 /// The certified interval of the penetration depth (module doc of
